@@ -1,0 +1,11 @@
+// One entry point per subcommand; each lives in <name>_command.cc.
+#ifndef DYNSLAM_APPS_COMMANDS_H_
+#define DYNSLAM_APPS_COMMANDS_H_
+
+namespace dynslam::cli {
+
+int RunSolve(int argc, char** argv);
+
+}  // namespace dynslam::cli
+
+#endif  // DYNSLAM_APPS_COMMANDS_H_

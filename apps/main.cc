@@ -1,0 +1,45 @@
+// `dynslam <command> [options]`: dispatches to one file per subcommand.
+#include <cstring>
+#include <iostream>
+
+#include "cli.h"
+#include "commands.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);  // argv[0] is the program, argv[1] the command
+};
+
+constexpr Command kCommands[] = {
+    {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},
+};
+
+void PrintUsage(std::ostream& out) {
+  out << "usage: dynslam <command> [options]   (dynslam <command> --help for details)\n\n"
+      << "Dynamic SLAM back ends on Ceres Solver.\n\ncommands:\n";
+  for (const Command& command : kCommands) {
+    out << "  " << command.name << "\n      " << command.summary << "\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    PrintUsage(std::cerr);
+    return dynslam::cli::kExitBadInput;
+  }
+  if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    PrintUsage(std::cout);
+    return dynslam::cli::kExitOk;
+  }
+  for (const Command& command : kCommands) {
+    if (std::strcmp(argv[1], command.name) == 0) return command.run(argc, argv);
+  }
+  std::cerr << "error: unknown command '" << argv[1] << "'\n";
+  PrintUsage(std::cerr);
+  return dynslam::cli::kExitBadInput;
+}
