@@ -1,0 +1,112 @@
+// dynslam solve GRAPH --out DIR [--gt GT] [solver options]   (SPEC §4)
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include "cli.h"
+#include "commands.h"
+#include "dynslam/graph_io.h"
+#include "dynslam/solve_output.h"
+#include "dynslam/solver.h"
+#include "solver_flags.h"
+
+namespace dynslam::cli {
+namespace {
+
+void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
+  const SolveReport& r = *outputs.report;
+  std::string source;
+  std::printf("%s (%s)\n", outputs.input.c_str(), FormulationOf(*outputs.solved, &source).c_str());
+  std::printf("variables:");
+  for (size_t i = 0; i < kAllRoles.size(); ++i) {
+    if (r.variables_by_role[i] > 0) {
+      std::printf(" %s %lld", RoleName(kAllRoles[i]), static_cast<long long>(r.variables_by_role[i]));
+    }
+  }
+  if (r.unused_variables > 0) std::printf(" (unused, held constant: %lld)", static_cast<long long>(r.unused_variables));
+  std::printf("\nedges:");
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    const int64_t n = r.edges_by_kind[static_cast<int>(kind)];
+    if (n > 0) std::printf(" %s %lld", EdgeKindName(kind), static_cast<long long>(n));
+  }
+  std::printf("\ncost: %.12g -> %.12g\n", r.initial_cost, r.final_cost);
+  std::printf("iterations: %d accepted of %d steps; %s (%s)\n", r.iterations, r.steps,
+              r.termination.c_str(), r.termination_detail.c_str());
+  std::printf("time: %.3f s total = %.3f s set-up + %.3f s minimiser (%.3f s evaluation, %.3f s linear solves)\n",
+              r.time_total_s, r.time_preprocessor_s, r.time_minimizer_s, r.time_evaluation_s,
+              r.time_linear_solver_s);
+  for (const std::string& warning : outputs.warnings) std::printf("warning: %s\n", warning.c_str());
+  for (const std::string& warning : r.warnings) std::printf("warning: %s\n", warning.c_str());
+  std::printf("outputs: %s\n", out_dir.c_str());
+}
+
+}  // namespace
+
+int RunSolve(int argc, char** argv) {
+  std::string graph_path;
+  std::string out_dir;
+  std::string gt_path;
+  bool skip_unknown = false;
+  ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
+                   "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
+                   "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).");
+  parser.AddPositional("GRAPH", &graph_path, "graph file (g2o dialect of SPEC §1)");
+  parser.AddString("out", &out_dir, "output directory (required)", "DIR");
+  parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2) for the metrics of SPEC §5", "GT");
+  parser.AddFlag("skip-unknown-tags", &skip_unknown,
+                 "skip lines with tags SPEC §1 does not know (counted and reported)");
+  SolverFlags solver_flags(&parser);
+  if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
+  if (out_dir.empty()) {
+    std::cerr << "error: --out DIR is required\n";
+    return kExitBadInput;
+  }
+  SolverOptions options;
+  if (std::optional<std::string> problem = solver_flags.Finish(&options)) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
+  PrintProgressAfterOneSecond(&options);
+
+  ReadOptions read_options;
+  read_options.skip_unknown_tags = skip_unknown;
+  ReadReport read_report;
+  Expected<Graph> graph = ReadGraph(graph_path, read_options, &read_report);
+  if (!graph.ok()) {
+    std::cerr << "error: " << graph.error().ToString() << "\n";
+    return kExitBadInput;
+  }
+  SolveOutputs outputs;
+  outputs.input = graph_path;
+  for (const auto& [tag, count] : read_report.skipped_tags) {
+    outputs.warnings.push_back("skipped " + std::to_string(count) + " lines with unknown tag " + tag);
+  }
+
+  Expected<SolveReport> report = Solve(options, &*graph);
+  if (!report.ok()) {
+    Error error = report.error();
+    if (error.file.empty() && error.line > 0) error.file = graph_path;
+    std::cerr << "error: " << error.ToString() << "\n";
+    return kExitBadInput;
+  }
+  outputs.solved = &*graph;
+  outputs.report = &*report;
+  outputs.options = &options;
+  outputs.object_poses = ObjectPoseVariables(*graph);
+  if (!gt_path.empty()) {
+    std::cerr << "error: --gt is not available yet in this build\n";
+    return kExitBadInput;
+  }
+  if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
+    std::cerr << "error: " << status.error().ToString() << "\n";
+    return kExitFailed;
+  }
+  PrintSummary(outputs, out_dir);
+  if (!report->usable) {
+    std::cerr << "error: the solve failed: " << report->termination_detail << "\n";
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace dynslam::cli

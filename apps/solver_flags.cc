@@ -1,0 +1,108 @@
+#include "solver_flags.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace dynslam::cli {
+namespace {
+
+// "kind=huber:1.5,kind=cauchy:2" → options->kernels.
+std::optional<std::string> ParseRobust(const std::string& text, SolverOptions* options) {
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    if (item.empty()) continue;
+    const size_t eq = item.find('=');
+    const size_t colon = item.find(':', eq == std::string::npos ? 0 : eq);
+    if (eq == std::string::npos || colon == std::string::npos) {
+      return "--robust: '" + item + "' is not KIND=huber:K or KIND=cauchy:K";
+    }
+    const std::string kind_name = item.substr(0, eq);
+    const std::string type = item.substr(eq + 1, colon - eq - 1);
+    const std::string threshold_text = item.substr(colon + 1);
+    int kind = -1;
+    for (const EdgeKind k : kAllEdgeKinds) {
+      if (kind_name == EdgeKindName(k)) kind = static_cast<int>(k);
+    }
+    if (kind < 0) return "--robust: unknown edge kind '" + kind_name + "'";
+    RobustKernel kernel;
+    if (type == "huber") {
+      kernel.type = RobustKernel::Type::kHuber;
+    } else if (type == "cauchy") {
+      kernel.type = RobustKernel::Type::kCauchy;
+    } else {
+      return "--robust: unknown kernel '" + type + "' (huber or cauchy)";
+    }
+    char* end = nullptr;
+    kernel.threshold = std::strtod(threshold_text.c_str(), &end);
+    if (threshold_text.empty() || *end != '\0' || !(kernel.threshold > 0) ||
+        !std::isfinite(kernel.threshold)) {
+      return "--robust: threshold '" + threshold_text + "' is not a positive number";
+    }
+    options->kernels[kind] = kernel;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+SolverFlags::SolverFlags(ArgParser* parser)
+    : minimizer_(Name(defaults_.minimizer)),
+      linear_solver_(Name(defaults_.linear_solver)),
+      sparse_backend_(Name(defaults_.sparse_backend)),
+      threads_(defaults_.threads),
+      max_iterations_(defaults_.max_iterations),
+      function_tolerance_(defaults_.function_tolerance),
+      gradient_tolerance_(defaults_.gradient_tolerance),
+      parameter_tolerance_(defaults_.parameter_tolerance),
+      fix_first_(defaults_.fix_first) {
+  parser->AddChoice("minimizer", &minimizer_, {"lm", "dogleg"},
+                    "trust-region strategy: Levenberg-Marquardt or Powell's dogleg");
+  parser->AddChoice("linear-solver", &linear_solver_,
+                    {"sparse_schur", "sparse_normal_cholesky", "iterative_schur", "dense_schur"},
+                    "linear solver of each step; the Schur solvers eliminate points first");
+  parser->AddChoice("sparse-backend", &sparse_backend_, {"suitesparse", "eigen"},
+                    "sparse Cholesky library (CHOLMOD or Eigen's SimplicialLDLT)");
+  parser->AddInt("threads", &threads_, "threads for evaluation and linear algebra", 1, 256);
+  parser->AddInt("max-iterations", &max_iterations_, "most linear solves", 0, 1000000);
+  parser->AddDouble("function-tolerance", &function_tolerance_,
+                    "stop when |cost change| / cost is below this", 0, 1);
+  parser->AddDouble("gradient-tolerance", &gradient_tolerance_,
+                    "stop when the max-norm of the projected gradient is below this", 0, 1);
+  parser->AddDouble("parameter-tolerance", &parameter_tolerance_,
+                    "stop when the step is this small relative to the parameters", 0, 1);
+  parser->AddFlag("fix-first", &fix_first_,
+                  "hold the smallest-id pose constant (needed when the graph has no prior)");
+  parser->AddString("robust", &robust_,
+                    "robust kernels per edge kind, e.g. point=huber:1.345,dynamic_point=cauchy:2 "
+                    "(kinds: prior odometry smoothing point dynamic_point motion object_point "
+                    "object_motion kinematic object_prior)",
+                    "KIND=TYPE:K,...");
+}
+
+std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
+  *options = defaults_;
+  Parse(minimizer_, &options->minimizer);
+  Parse(linear_solver_, &options->linear_solver);
+  Parse(sparse_backend_, &options->sparse_backend);
+  options->threads = static_cast<int>(threads_);
+  options->max_iterations = static_cast<int>(max_iterations_);
+  options->function_tolerance = function_tolerance_;
+  options->gradient_tolerance = gradient_tolerance_;
+  options->parameter_tolerance = parameter_tolerance_;
+  options->fix_first = fix_first_;
+  return ParseRobust(robust_, options);
+}
+
+void PrintProgressAfterOneSecond(SolverOptions* options) {
+  options->on_step = [](const StepRecord& row) {
+    if (row.time_s < 1.0) return;
+    std::fprintf(stderr, "step %4d  iteration %4d  cost %.10e  trial %.10e  lambda %.1e  %s  %.2f s\n",
+                 row.step, row.iteration, row.cost, row.trial_cost, row.lambda,
+                 row.accepted ? "accepted" : "rejected", row.time_s);
+  };
+}
+
+}  // namespace dynslam::cli

@@ -1,0 +1,52 @@
+// The outputs of a solve (SPEC §4): solution.g2o, cameras.csv, motions.csv, object_poses.csv,
+// convergence.csv and summary.json in one directory.
+#ifndef DYNSLAM_SOLVE_OUTPUT_H_
+#define DYNSLAM_SOLVE_OUTPUT_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "dynslam/graph.h"
+#include "dynslam/json.h"
+#include "dynslam/pose.h"
+#include "dynslam/solver.h"
+#include "dynslam/status.h"
+
+namespace dynslam {
+
+struct ObjectPoseRow {
+  int64_t object = 0;
+  int64_t frame = 0;
+  Pose pose;
+};
+
+struct SolveOutputs {
+  std::string input;                    // the graph file, as given
+  const Graph* solved = nullptr;        // at the optimised values
+  const SolveReport* report = nullptr;
+  const SolverOptions* options = nullptr;
+  // object_poses.csv rows: the L variables of an object-centric graph, or the poses composed
+  // from motions and ground truth for a world-centric one (SPEC §4, §5). Empty: header only.
+  std::vector<ObjectPoseRow> object_poses;
+  std::optional<Json> metrics;          // SPEC §5, when ground truth was given
+  std::vector<std::string> warnings;    // reading/building warnings to keep in the summary
+};
+
+// "wc", "oc_b", … from LABEL_FORMULATION; otherwise inferred from the edges ("pose_graph" when
+// there are only poses). `source` receives "label" or "inferred".
+std::string FormulationOf(const Graph& graph, std::string* source);
+
+// The object poses L of an object-centric graph, by (object, frame).
+std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph);
+
+Json SummaryJson(const SolveOutputs& outputs);
+
+// Writes all files of SPEC §4 into `dir` (created when missing).
+Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
+
+}  // namespace dynslam
+
+#endif  // DYNSLAM_SOLVE_OUTPUT_H_

@@ -1,0 +1,115 @@
+// Assemble a ceres::Problem from a Graph and solve it (SPEC §1.5, §1.7, §4).
+//
+// Every edge becomes one autodiff cost function of cost_functions/ over the SE(3) manifold
+// (se3_manifold.h); robust kernels are chosen per edge kind (SPEC §1.5). Points that no
+// residual joins to another point are eliminated first by the Schur solvers. The solver works
+// on its own copy of the values and writes the optimum back into the Graph.
+#ifndef DYNSLAM_SOLVER_H_
+#define DYNSLAM_SOLVER_H_
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dynslam/graph.h"
+#include "dynslam/status.h"
+
+namespace dynslam {
+
+enum class MinimizerType { kLevenbergMarquardt, kDogleg };
+enum class LinearSolverType {
+  kSparseSchur,
+  kSparseNormalCholesky,
+  kIterativeSchur,
+  kDenseSchur,
+};
+enum class SparseBackend { kSuiteSparse, kEigen };
+
+// Command-line spellings: "lm", "dogleg"; "sparse_schur", …; "suitesparse", "eigen".
+const char* Name(MinimizerType type);
+const char* Name(LinearSolverType type);
+const char* Name(SparseBackend backend);
+bool Parse(const std::string& text, MinimizerType* type);
+bool Parse(const std::string& text, LinearSolverType* type);
+bool Parse(const std::string& text, SparseBackend* backend);
+
+// ρ of SPEC §1.5 for one edge kind. Huber(k) and Cauchy(k) are Ceres's HuberLoss(k) and
+// CauchyLoss(k) applied to the squared whitened residual.
+struct RobustKernel {
+  enum class Type { kNone, kHuber, kCauchy };
+  Type type = Type::kNone;
+  double threshold = 1.0;
+};
+
+struct SolverOptions {
+  MinimizerType minimizer = MinimizerType::kLevenbergMarquardt;
+  LinearSolverType linear_solver = LinearSolverType::kSparseSchur;
+  SparseBackend sparse_backend = SparseBackend::kSuiteSparse;
+  int threads = 1;
+  int max_iterations = 200;
+  // Ceres's tolerances (Solver::Options); tighter than Ceres's defaults so that a solve lands
+  // on the optimum to ~1e-10 relative (the GTSAM tight_exact reference, SPEC §6).
+  double function_tolerance = 1e-12;
+  double gradient_tolerance = 1e-12;
+  double parameter_tolerance = 1e-12;
+  // SPEC §1.7: a graph with no prior is refused unless the smallest-id pose is held constant.
+  bool fix_first = false;
+  // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
+  std::array<RobustKernel, kNumEdgeKinds> kernels{};
+  // Called after every linear solve Ceres reports (rejected ones included).
+  std::function<void(const struct StepRecord&)> on_step;
+};
+
+// One row of convergence.csv (SPEC §4).
+struct StepRecord {
+  int step = 0;       // linear solves from 1
+  int iteration = 0;  // 1 + accepted steps before this one
+  double lambda = 0;  // LM damping; for dogleg 1/radius
+  double cost = 0;    // before the step
+  double trial_cost = 0;  // at the trial point; +inf when the step was not valid
+  bool accepted = false;
+  double time_s = 0;  // since the minimiser started (problem set-up excluded)
+};
+
+using CostByKind = std::array<double, kNumEdgeKinds>;
+
+struct SolveReport {
+  std::array<int64_t, kAllRoles.size()> variables_by_role{};  // order of kAllRoles
+  int64_t unused_variables = 0;  // in no edge: held constant (SPEC §1.6)
+  std::array<int64_t, kNumEdgeKinds> edges_by_kind{};
+  double initial_cost = 0;
+  double final_cost = 0;
+  CostByKind initial_cost_by_kind{};
+  CostByKind final_cost_by_kind{};
+  int iterations = 0;  // accepted steps
+  int steps = 0;       // linear solves Ceres reported
+  std::string termination;         // "convergence", "no_convergence", "failure"
+  std::string termination_detail;  // Ceres's message
+  bool usable = false;             // Ceres says the solution is usable
+  double time_total_s = 0;              // ceres::Solve, preprocessing included
+  double time_minimizer_s = 0;
+  double time_evaluation_s = 0;         // residuals and Jacobians
+  double time_linear_solver_s = 0;
+  double time_preprocessor_s = 0;
+  std::string eliminated_first;         // what the Schur ordering put in the first group
+  std::vector<VertexId> held_constant;  // unused vertices and, with fix_first, the first pose
+  std::vector<StepRecord> convergence;
+  std::vector<std::string> warnings;
+};
+
+// The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
+// Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
+Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options = {});
+
+// Solves and writes the solution into `graph`'s vertices. An Error means nothing was solved
+// (gauge freedom, invalid options, a malformed graph); a solve that ran but failed returns a
+// report with usable == false (the graph then holds Ceres's best values).
+Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph);
+
+double TotalCost(const CostByKind& cost_by_kind);
+
+}  // namespace dynslam
+
+#endif  // DYNSLAM_SOLVER_H_

@@ -1,0 +1,227 @@
+#include "dynslam/solve_output.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "dynslam/graph_io.h"
+
+namespace dynslam {
+namespace {
+
+std::string Format(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+void AppendPose(std::string& line, const Pose& pose) {
+  const auto& d = pose.data;
+  for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += "," + Format(d[i]);  // tx ty tz qx qy qz qw
+}
+
+Status WriteText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) return Error{path.string(), 0, "cannot write the file"};
+  return Status::Ok();
+}
+
+std::string CamerasCsv(const Graph& graph) {
+  std::vector<std::pair<int64_t, Pose>> rows;
+  for (const auto& [id, vertex] : graph.vertices) {
+    if (vertex.label.role == Role::kCamera && graph.labelled) {
+      rows.emplace_back(vertex.label.frame, vertex.pose());
+    }
+  }
+  std::sort(rows.begin(), rows.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string text = "frame,tx,ty,tz,qx,qy,qz,qw\n";
+  for (const auto& [frame, pose] : rows) {
+    std::string line = std::to_string(frame);
+    AppendPose(line, pose);
+    text += line + "\n";
+  }
+  return text;
+}
+
+std::string ObjectFrameCsv(std::vector<ObjectPoseRow> rows) {
+  std::sort(rows.begin(), rows.end(), [](const ObjectPoseRow& a, const ObjectPoseRow& b) {
+    return std::tie(a.object, a.frame) < std::tie(b.object, b.frame);
+  });
+  std::string text = "object,frame,tx,ty,tz,qx,qy,qz,qw\n";
+  for (const ObjectPoseRow& row : rows) {
+    std::string line = std::to_string(row.object) + "," + std::to_string(row.frame);
+    AppendPose(line, row.pose);
+    text += line + "\n";
+  }
+  return text;
+}
+
+std::vector<ObjectPoseRow> VariablesWithRole(const Graph& graph, Role role) {
+  std::vector<ObjectPoseRow> rows;
+  for (const auto& [id, vertex] : graph.vertices) {
+    if (vertex.label.role == role) {
+      rows.push_back({vertex.label.object, vertex.label.frame, vertex.pose()});
+    }
+  }
+  return rows;
+}
+
+std::string ConvergenceCsv(const SolveReport& report) {
+  std::string text = "step,iteration,lambda,cost,trial_cost,accepted,time_s\n";
+  for (const StepRecord& row : report.convergence) {
+    text += std::to_string(row.step) + "," + std::to_string(row.iteration) + "," +
+            Format(row.lambda) + "," + Format(row.cost) + "," + Format(row.trial_cost) + "," +
+            (row.accepted ? "1" : "0") + "," + Format(row.time_s) + "\n";
+  }
+  return text;
+}
+
+Json CostJson(const CostByKind& cost) {
+  Json json = Json::Object();
+  for (const EdgeKind kind : kAllEdgeKinds) json.Set(EdgeKindName(kind), cost[static_cast<int>(kind)]);
+  return json;
+}
+
+const char* KernelName(RobustKernel::Type type) {
+  switch (type) {
+    case RobustKernel::Type::kNone: return "none";
+    case RobustKernel::Type::kHuber: return "huber";
+    case RobustKernel::Type::kCauchy: return "cauchy";
+  }
+  return "?";
+}
+
+Json SolverJson(const SolverOptions& options) {
+  Json kernels = Json::Object();
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    const RobustKernel& kernel = options.kernels[static_cast<int>(kind)];
+    if (kernel.type == RobustKernel::Type::kNone) continue;
+    kernels.Set(EdgeKindName(kind), Json::Object()
+                                        .Set("type", KernelName(kernel.type))
+                                        .Set("threshold", kernel.threshold));
+  }
+  return Json::Object()
+      .Set("library", "Ceres Solver 2.1 (dynslam)")
+      .Set("minimizer", Name(options.minimizer))
+      .Set("linear_solver", Name(options.linear_solver))
+      .Set("sparse_backend", Name(options.sparse_backend))
+      .Set("threads", options.threads)
+      .Set("max_iterations", options.max_iterations)
+      .Set("function_tolerance", options.function_tolerance)
+      .Set("gradient_tolerance", options.gradient_tolerance)
+      .Set("parameter_tolerance", options.parameter_tolerance)
+      .Set("fix_first", options.fix_first)
+      .Set("robust_kernels", std::move(kernels));
+}
+
+}  // namespace
+
+std::string FormulationOf(const Graph& graph, std::string* source) {
+  if (graph.formulation) {
+    *source = "label";
+    return *graph.formulation;
+  }
+  *source = "inferred";
+  const bool object_centric = !graph.object_point_edges.empty() ||
+                              !graph.object_motion_edges.empty() || !graph.kinematic_edges.empty();
+  if (object_centric) {
+    if (graph.object_motion_edges.empty()) return "oc_c";
+    return graph.kinematic_edges.empty() ? "oc_a" : "oc_b";
+  }
+  if (!graph.motion_edges.empty()) return "wc";
+  if (graph.point_edges.empty()) return "pose_graph";
+  return "static";
+}
+
+std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph) {
+  return VariablesWithRole(graph, Role::kObjectPose);
+}
+
+Json SummaryJson(const SolveOutputs& outputs) {
+  const SolveReport& report = *outputs.report;
+  std::string source;
+  const std::string formulation = FormulationOf(*outputs.solved, &source);
+
+  Json variables = Json::Object();
+  int64_t total_variables = 0;
+  for (size_t r = 0; r < kAllRoles.size(); ++r) {
+    variables.Set(RoleName(kAllRoles[r]), report.variables_by_role[r]);
+    total_variables += report.variables_by_role[r];
+  }
+  variables.Set("unused", report.unused_variables);
+  variables.Set("total", total_variables);
+
+  Json edges = Json::Object();
+  int64_t total_edges = 0;
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    edges.Set(EdgeKindName(kind), report.edges_by_kind[static_cast<int>(kind)]);
+    total_edges += report.edges_by_kind[static_cast<int>(kind)];
+  }
+  edges.Set("total", total_edges);
+
+  Json held = Json::Array();
+  for (const VertexId id : report.held_constant) held.Push(id);
+  Json warnings = Json::Array();
+  for (const std::string& warning : outputs.warnings) warnings.Push(warning);
+  for (const std::string& warning : report.warnings) warnings.Push(warning);
+
+  Json summary = Json::Object();
+  summary.Set("input", outputs.input)
+      .Set("formulation", formulation)
+      .Set("formulation_source", source)
+      .Set("variables", std::move(variables))
+      .Set("edges", std::move(edges))
+      .Set("initial_cost", report.initial_cost)
+      .Set("final_cost", report.final_cost)
+      .Set("cost_by_kind", Json::Object()
+                               .Set("initial", CostJson(report.initial_cost_by_kind))
+                               .Set("final", CostJson(report.final_cost_by_kind)))
+      .Set("iterations", report.iterations)
+      .Set("steps", report.steps)
+      .Set("termination", report.termination)
+      .Set("termination_detail", report.termination_detail)
+      .Set("usable", report.usable)
+      .Set("time_s", Json::Object()
+                         .Set("total", report.time_total_s)
+                         .Set("preprocessing", report.time_preprocessor_s)
+                         .Set("minimizer", report.time_minimizer_s)
+                         .Set("residual_jacobian_evaluation", report.time_evaluation_s)
+                         .Set("linear_solve", report.time_linear_solver_s))
+      .Set("schur_ordering", report.eliminated_first)
+      .Set("held_constant", std::move(held))
+      .Set("solver", SolverJson(*outputs.options))
+      .Set("warnings", std::move(warnings));
+  if (outputs.metrics) summary.Set("metrics", *outputs.metrics);
+  return summary;
+}
+
+Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return Error{dir, 0, "cannot create the output directory: " + ec.message()};
+  const std::filesystem::path base(dir);
+  const Graph& graph = *outputs.solved;
+  if (Status s = WriteGraph(graph, (base / "solution.g2o").string()); !s.ok()) return s;
+  const std::pair<const char*, std::string> files[] = {
+      {"cameras.csv", CamerasCsv(graph)},
+      {"motions.csv", ObjectFrameCsv(VariablesWithRole(graph, Role::kMotion))},
+      {"object_poses.csv", ObjectFrameCsv(outputs.object_poses)},
+      {"convergence.csv", ConvergenceCsv(*outputs.report)},
+      {"summary.json", SummaryJson(outputs).Dump() + "\n"},
+  };
+  for (const auto& [name, text] : files) {
+    if (Status s = WriteText(base / name, text); !s.ok()) return s;
+  }
+  return Status::Ok();
+}
+
+}  // namespace dynslam

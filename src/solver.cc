@@ -1,0 +1,437 @@
+#include "dynslam/solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <ceres/ceres.h>
+
+#include "cost_functions/object_kinematic_error.h"
+#include "cost_functions/object_point_measurement_error.h"
+#include "cost_functions/object_point_motion_error.h"
+#include "cost_functions/point_measurement_error.h"
+#include "cost_functions/point_motion_error.h"
+#include "cost_functions/pose_between_error.h"
+#include "cost_functions/pose_prior_error.h"
+#include "dynslam/se3_manifold.h"
+
+namespace dynslam {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct NamedEnum {
+  const char* name;
+  int value;
+};
+
+template <typename E, size_t N>
+const char* NameOf(const NamedEnum (&table)[N], E value) {
+  for (const NamedEnum& entry : table) {
+    if (entry.value == static_cast<int>(value)) return entry.name;
+  }
+  return "?";
+}
+
+template <typename E, size_t N>
+bool ParseName(const NamedEnum (&table)[N], const std::string& text, E* value) {
+  for (const NamedEnum& entry : table) {
+    if (text == entry.name) {
+      *value = static_cast<E>(entry.value);
+      return true;
+    }
+  }
+  return false;
+}
+
+constexpr NamedEnum kMinimizerNames[] = {
+    {"lm", static_cast<int>(MinimizerType::kLevenbergMarquardt)},
+    {"dogleg", static_cast<int>(MinimizerType::kDogleg)}};
+constexpr NamedEnum kLinearSolverNames[] = {
+    {"sparse_schur", static_cast<int>(LinearSolverType::kSparseSchur)},
+    {"sparse_normal_cholesky", static_cast<int>(LinearSolverType::kSparseNormalCholesky)},
+    {"iterative_schur", static_cast<int>(LinearSolverType::kIterativeSchur)},
+    {"dense_schur", static_cast<int>(LinearSolverType::kDenseSchur)}};
+constexpr NamedEnum kBackendNames[] = {
+    {"suitesparse", static_cast<int>(SparseBackend::kSuiteSparse)},
+    {"eigen", static_cast<int>(SparseBackend::kEigen)}};
+
+std::unique_ptr<ceres::LossFunction> MakeLoss(const RobustKernel& kernel) {
+  switch (kernel.type) {
+    case RobustKernel::Type::kNone: return nullptr;
+    case RobustKernel::Type::kHuber: return std::make_unique<ceres::HuberLoss>(kernel.threshold);
+    case RobustKernel::Type::kCauchy: return std::make_unique<ceres::CauchyLoss>(kernel.threshold);
+  }
+  return nullptr;
+}
+
+// The ceres::Problem of a graph: its own copy of the values (one 7-double block per vertex,
+// allocated once so that the addresses Ceres holds stay valid), one residual block per edge,
+// the residual blocks of each kind (for the per-kind cost of SPEC §1.5).
+class Assembly {
+ public:
+  static Expected<std::unique_ptr<Assembly>> Build(const Graph& graph,
+                                                   const SolverOptions& options);
+
+  ceres::Problem& problem() { return *problem_; }
+  // Cost per kind at the current values of the blocks.
+  CostByKind Evaluate();
+  void WriteBack(Graph* graph) const;
+  // Schur ordering: points no residual joins to another point go first. Empty when there is
+  // no such point (Ceres then finds an independent set itself).
+  std::shared_ptr<ceres::ParameterBlockOrdering> MakeOrdering(std::string* description);
+  const std::vector<VertexId>& unused() const { return unused_; }
+  // SPEC §1.7 --fix-first: holds the smallest-id pose that is in the problem constant.
+  std::optional<VertexId> HoldFirstPoseConstant();
+
+ private:
+  Assembly() = default;
+
+  double* Block(VertexId id) { return values_[index_.at(id)].data(); }
+  // Adds a residual of `kind` over `ids` (in that order); refuses an edge that names one vertex
+  // twice (Ceres would abort on it).
+  Status Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::CostFunction* cost,
+             std::initializer_list<VertexId> ids);
+
+  std::unordered_map<VertexId, size_t> index_;
+  std::vector<VertexId> ids_;
+  std::vector<VertexType> types_;
+  std::vector<std::array<double, kPoseSize>> values_;
+  std::vector<VertexId> unused_;
+  SE3Manifold manifold_;
+  std::array<std::unique_ptr<ceres::LossFunction>, kNumEdgeKinds> losses_;
+  std::array<std::vector<ceres::ResidualBlockId>, kNumEdgeKinds> blocks_;
+  // For the Schur ordering: points that share a residual with another point.
+  std::unordered_set<VertexId> joined_points_;
+  std::unique_ptr<ceres::Problem> problem_;
+};
+
+Status Assembly::Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::CostFunction* cost,
+                     std::initializer_list<VertexId> ids) {
+  std::unique_ptr<ceres::CostFunction> owned(cost);
+  std::vector<double*> blocks;
+  for (const VertexId id : ids) {
+    if (std::count(ids.begin(), ids.end(), id) > 1) {
+      return Error{"", line, std::string(EdgeKindName(kind)) + " edge uses vertex " +
+                                 std::to_string(id) + " twice"};
+    }
+    if (graph.Find(id) == nullptr) {
+      return Error{"", line, "edge names vertex " + std::to_string(id) + ", which is not declared"};
+    }
+    blocks.push_back(Block(id));
+  }
+  const int k = static_cast<int>(kind);
+  blocks_[k].push_back(problem_->AddResidualBlock(owned.release(), losses_[k].get(), blocks));
+  return Status::Ok();
+}
+
+Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
+                                                    const SolverOptions& options) {
+  std::unique_ptr<Assembly> a(new Assembly());
+  a->values_.reserve(graph.vertices.size());
+  for (const auto& [id, vertex] : graph.vertices) {
+    a->index_.emplace(id, a->values_.size());
+    a->ids_.push_back(id);
+    a->types_.push_back(vertex.type);
+    a->values_.push_back(vertex.value);
+  }
+  for (int k = 0; k < kNumEdgeKinds; ++k) a->losses_[k] = MakeLoss(options.kernels[k]);
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  a->problem_ = std::make_unique<ceres::Problem>(problem_options);
+
+  Status status;
+  auto add = [&](EdgeKind kind, int64_t line, ceres::CostFunction* cost,
+                 std::initializer_list<VertexId> ids) {
+    if (status.ok()) {
+      status = a->Add(graph, kind, line, cost, ids);
+    } else {
+      delete cost;
+    }
+  };
+  for (const PriorEdge& e : graph.priors) {
+    add(KindOf(graph, e), e.line, PosePriorError::Create(e.measurement, e.information), {e.pose});
+  }
+  for (const BetweenEdge& e : graph.betweens) {
+    add(KindOf(graph, e), e.line, PoseBetweenError::Create(e.measurement, e.information),
+        {e.from, e.to});
+  }
+  for (const PointEdge& e : graph.point_edges) {
+    add(KindOf(graph, e), e.line, PointMeasurementError::Create(e.measurement, e.information),
+        {e.pose, e.point});
+  }
+  for (const MotionEdge& e : graph.motion_edges) {
+    add(EdgeKind::kMotion, e.line, PointMotionError::Create(e.measurement, e.information),
+        {e.prev, e.curr, e.motion});
+    a->joined_points_.insert(e.prev);
+    a->joined_points_.insert(e.curr);
+  }
+  for (const ObjectPointEdge& e : graph.object_point_edges) {
+    add(EdgeKind::kObjectPoint, e.line,
+        ObjectPointMeasurementError::Create(e.measurement, e.information),
+        {e.camera, e.object_pose, e.point});
+  }
+  for (const ObjectMotionEdge& e : graph.object_motion_edges) {
+    add(EdgeKind::kObjectMotion, e.line, ObjectPointMotionError::Create(e.information),
+        {e.pose_prev, e.pose_curr, e.motion, e.point});
+  }
+  for (const KinematicEdge& e : graph.kinematic_edges) {
+    add(EdgeKind::kKinematic, e.line, ObjectKinematicError::Create(e.information),
+        {e.pose_prev, e.pose_curr, e.motion});
+  }
+  if (!status.ok()) return status.error();
+
+  for (size_t i = 0; i < a->values_.size(); ++i) {
+    double* block = a->values_[i].data();
+    if (!a->problem_->HasParameterBlock(block)) {
+      a->unused_.push_back(a->ids_[i]);
+    } else if (a->types_[i] == VertexType::kPose) {
+      a->problem_->SetManifold(block, &a->manifold_);
+    }
+  }
+  return a;
+}
+
+std::optional<VertexId> Assembly::HoldFirstPoseConstant() {
+  for (size_t i = 0; i < values_.size(); ++i) {
+    if (types_[i] == VertexType::kPose && problem_->HasParameterBlock(values_[i].data())) {
+      problem_->SetParameterBlockConstant(values_[i].data());
+      return ids_[i];
+    }
+  }
+  return std::nullopt;
+}
+
+CostByKind Assembly::Evaluate() {
+  CostByKind cost{};
+  for (int k = 0; k < kNumEdgeKinds; ++k) {
+    if (blocks_[k].empty()) continue;
+    ceres::Problem::EvaluateOptions evaluate_options;
+    evaluate_options.residual_blocks = blocks_[k];
+    evaluate_options.apply_loss_function = true;
+    problem_->Evaluate(evaluate_options, &cost[k], nullptr, nullptr, nullptr);
+  }
+  return cost;
+}
+
+void Assembly::WriteBack(Graph* graph) const {
+  for (size_t i = 0; i < ids_.size(); ++i) {
+    graph->vertices.at(ids_[i]).value = values_[i];
+  }
+}
+
+std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(std::string* description) {
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  int64_t first = 0;
+  int64_t joined = 0;
+  for (size_t i = 0; i < values_.size(); ++i) {
+    double* block = values_[i].data();
+    if (!problem_->HasParameterBlock(block)) continue;
+    const bool is_point = types_[i] == VertexType::kPoint;
+    const bool independent = is_point && joined_points_.count(ids_[i]) == 0;
+    joined += is_point && !independent;
+    first += independent;
+    ordering->AddElementToGroup(block, independent ? 0 : 1);
+  }
+  if (first == 0) {
+    *description = "no point can be eliminated first; Ceres chose an independent set";
+    return nullptr;
+  }
+  *description = std::to_string(first) + " points first";
+  if (joined > 0) {
+    *description += "; " + std::to_string(joined) + " points joined by motion edges kept with the poses";
+  }
+  return ordering;
+}
+
+ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
+  ceres::Solver::Options o;
+  o.minimizer_type = ceres::TRUST_REGION;
+  o.trust_region_strategy_type = options.minimizer == MinimizerType::kDogleg
+                                     ? ceres::DOGLEG
+                                     : ceres::LEVENBERG_MARQUARDT;
+  switch (options.linear_solver) {
+    case LinearSolverType::kSparseSchur: o.linear_solver_type = ceres::SPARSE_SCHUR; break;
+    case LinearSolverType::kSparseNormalCholesky:
+      o.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+      break;
+    case LinearSolverType::kIterativeSchur:
+      o.linear_solver_type = ceres::ITERATIVE_SCHUR;
+      o.preconditioner_type = ceres::SCHUR_JACOBI;
+      break;
+    case LinearSolverType::kDenseSchur: o.linear_solver_type = ceres::DENSE_SCHUR; break;
+  }
+  o.sparse_linear_algebra_library_type = options.sparse_backend == SparseBackend::kEigen
+                                             ? ceres::EIGEN_SPARSE
+                                             : ceres::SUITE_SPARSE;
+  o.num_threads = options.threads;
+  o.max_num_iterations = options.max_iterations;
+  o.function_tolerance = options.function_tolerance;
+  o.gradient_tolerance = options.gradient_tolerance;
+  o.parameter_tolerance = options.parameter_tolerance;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  return o;
+}
+
+// Turns Ceres's per-iteration summaries into SPEC §4 convergence rows. Ceres reports a rejected
+// step with the trial point's cost, an invalid step (no trial point) with cost_change 0 and
+// step_is_valid false, and its LM damping as 1 / trust_region_radius at the end of the step
+// (so the damping a step used is the radius reported before it).
+class ConvergenceRecorder : public ceres::IterationCallback {
+ public:
+  explicit ConvergenceRecorder(const SolverOptions& options) : options_(options) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (s.iteration == 0) {
+      accepted_cost_ = s.cost;
+      radius_ = s.trust_region_radius;
+      return ceres::SOLVER_CONTINUE;
+    }
+    StepRecord row;
+    row.step = static_cast<int>(rows_.size()) + 1;
+    row.iteration = accepted_ + 1;
+    row.lambda = 1.0 / radius_;
+    row.cost = accepted_cost_;
+    row.trial_cost = s.step_is_valid ? s.cost : kInfinity;
+    row.accepted = s.step_is_successful;
+    row.time_s = s.cumulative_time_in_seconds;  // preprocessing is subtracted after the solve
+    rows_.push_back(row);
+    if (s.step_is_successful) {
+      ++accepted_;
+      accepted_cost_ = s.cost;
+    }
+    radius_ = s.trust_region_radius;
+    if (options_.on_step) options_.on_step(row);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+  std::vector<StepRecord> TakeRows() { return std::move(rows_); }
+
+ private:
+  const SolverOptions& options_;
+  std::vector<StepRecord> rows_;
+  double accepted_cost_ = 0;
+  double radius_ = 1;
+  int accepted_ = 0;
+};
+
+Status CheckOptions(const SolverOptions& options) {
+  if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
+  if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
+  const ceres::SparseLinearAlgebraLibraryType library =
+      options.sparse_backend == SparseBackend::kEigen ? ceres::EIGEN_SPARSE : ceres::SUITE_SPARSE;
+  if (options.linear_solver != LinearSolverType::kDenseSchur &&
+      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(library)) {
+    return Error{"", 0, std::string("this Ceres build has no ") + Name(options.sparse_backend) +
+                            " sparse backend"};
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+const char* Name(MinimizerType type) { return NameOf(kMinimizerNames, type); }
+const char* Name(LinearSolverType type) { return NameOf(kLinearSolverNames, type); }
+const char* Name(SparseBackend backend) { return NameOf(kBackendNames, backend); }
+bool Parse(const std::string& text, MinimizerType* type) {
+  return ParseName(kMinimizerNames, text, type);
+}
+bool Parse(const std::string& text, LinearSolverType* type) {
+  return ParseName(kLinearSolverNames, text, type);
+}
+bool Parse(const std::string& text, SparseBackend* backend) {
+  return ParseName(kBackendNames, text, backend);
+}
+
+double TotalCost(const CostByKind& cost_by_kind) {
+  double total = 0;
+  for (const double cost : cost_by_kind) total += cost;
+  return total;
+}
+
+Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options) {
+  Expected<std::unique_ptr<Assembly>> assembly = Assembly::Build(graph, options);
+  if (!assembly.ok()) return assembly.error();
+  return (*assembly)->Evaluate();
+}
+
+Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
+  if (Status status = CheckOptions(options); !status.ok()) return status.error();
+  if (graph->priors.empty() && !options.fix_first) {
+    return Error{"", 0,
+                 "the graph has no EDGE_SE3_PRIOR, so it is determined only up to a rigid motion "
+                 "(gauge freedom, SPEC §1.7); add a prior or pass --fix-first to hold the "
+                 "smallest-id pose constant"};
+  }
+  Expected<std::unique_ptr<Assembly>> built = Assembly::Build(*graph, options);
+  if (!built.ok()) return built.error();
+  Assembly& assembly = **built;
+
+  SolveReport report;
+  for (const auto& [id, vertex] : graph->vertices) {
+    for (size_t r = 0; r < kAllRoles.size(); ++r) {
+      report.variables_by_role[r] += vertex.label.role == kAllRoles[r];
+    }
+  }
+  report.edges_by_kind = CountEdgesByKind(*graph);
+  report.unused_variables = static_cast<int64_t>(assembly.unused().size());
+  report.held_constant = assembly.unused();
+  if (!assembly.unused().empty()) {
+    report.warnings.push_back(std::to_string(assembly.unused().size()) +
+                              " vertices are used by no edge and are held constant (first: " +
+                              std::to_string(assembly.unused().front()) + ")");
+  }
+  if (options.fix_first) {
+    if (std::optional<VertexId> first = assembly.HoldFirstPoseConstant()) {
+      report.held_constant.push_back(*first);
+    }
+  }
+
+  report.initial_cost_by_kind = assembly.Evaluate();
+  report.initial_cost = TotalCost(report.initial_cost_by_kind);
+
+  ceres::Solver::Options ceres_options = MakeCeresOptions(options);
+  ceres_options.linear_solver_ordering = assembly.MakeOrdering(&report.eliminated_first);
+  std::string why_invalid;
+  if (!ceres_options.IsValid(&why_invalid)) return Error{"", 0, "solver options: " + why_invalid};
+
+  ConvergenceRecorder recorder(options);
+  ceres_options.callbacks.push_back(&recorder);
+  ceres::Solver::Summary summary;
+  ceres::Solve(ceres_options, &assembly.problem(), &summary);
+
+  report.convergence = recorder.TakeRows();
+  for (StepRecord& row : report.convergence) row.time_s -= summary.preprocessor_time_in_seconds;
+  report.steps = static_cast<int>(report.convergence.size());
+  report.iterations = summary.num_successful_steps;
+  report.usable = summary.IsSolutionUsable();
+  report.termination_detail = summary.message;
+  switch (summary.termination_type) {
+    case ceres::CONVERGENCE: report.termination = "convergence"; break;
+    case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;
+    default: report.termination = "failure"; break;
+  }
+  report.time_total_s = summary.total_time_in_seconds;
+  report.time_minimizer_s = summary.minimizer_time_in_seconds;
+  report.time_preprocessor_s = summary.preprocessor_time_in_seconds;
+  report.time_evaluation_s =
+      summary.residual_evaluation_time_in_seconds + summary.jacobian_evaluation_time_in_seconds;
+  report.time_linear_solver_s = summary.linear_solver_time_in_seconds;
+
+  report.final_cost_by_kind = assembly.Evaluate();
+  report.final_cost = TotalCost(report.final_cost_by_kind);
+  assembly.WriteBack(graph);
+  return report;
+}
+
+}  // namespace dynslam
