@@ -1,0 +1,135 @@
+// Assembly and solve on small graphs whose answers are known by hand.
+#include "dynslam/solver.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "dynslam/graph_io.h"
+#include "dynslam/se3.h"
+
+namespace dynslam {
+namespace {
+
+Graph Read(const std::string& text) {
+  std::istringstream in(text);
+  Expected<Graph> graph = ReadGraph(in, "test.g2o");
+  EXPECT_TRUE(graph.ok()) << graph.error().ToString();
+  return graph.ok() ? std::move(graph).value() : Graph{};
+}
+
+// Two poses, a prior on the first at the identity and an odometry edge of 1 m along x and 90°
+// about z; the second pose starts off by 0.3 m. Optimum: cost 0, pose 1 = the measurement.
+constexpr char kTwoPoses[] =
+    "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
+    "VERTEX_SE3:QUAT 1 1.3 0.2 0 0 0 0.3 0.95393920141694566\n"
+    "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n"
+    "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0.70710678118654757 0.70710678118654757 "
+    "1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n";
+
+TEST(SolverTest, TwoPosesReachZeroCostAtTheMeasurement) {
+  Graph graph = Read(kTwoPoses);
+  Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_TRUE(report->usable);
+  EXPECT_GT(report->initial_cost, 0.01);
+  EXPECT_LT(report->final_cost, 1e-20);
+  const Pose solved = graph.Find(1)->pose();
+  EXPECT_NEAR(solved.translation().x(), 1.0, 1e-10);
+  EXPECT_NEAR(solved.translation().y(), 0.0, 1e-10);
+  EXPECT_NEAR(RotationAngle(solved), M_PI / 2, 1e-10);
+  EXPECT_EQ(report->edges_by_kind[static_cast<int>(EdgeKind::kPrior)], 1);
+  EXPECT_EQ(report->edges_by_kind[static_cast<int>(EdgeKind::kOdometry)], 1);
+}
+
+TEST(SolverTest, ConvergenceRowsFollowSpecSection4) {
+  Graph graph = Read(kTwoPoses);
+  Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
+  ASSERT_TRUE(report.ok());
+  ASSERT_FALSE(report->convergence.empty());
+  int accepted = 0;
+  double cost = report->initial_cost;
+  for (size_t i = 0; i < report->convergence.size(); ++i) {
+    const StepRecord& row = report->convergence[i];
+    EXPECT_EQ(row.step, static_cast<int>(i) + 1);
+    EXPECT_EQ(row.iteration, accepted + 1);
+    EXPECT_DOUBLE_EQ(row.cost, cost);
+    EXPECT_GT(row.lambda, 0);
+    if (row.accepted) {
+      EXPECT_LT(row.trial_cost, row.cost);
+      cost = row.trial_cost;
+      ++accepted;
+    }
+  }
+  EXPECT_EQ(accepted, report->iterations);
+  EXPECT_EQ(static_cast<int>(report->convergence.size()), report->steps);
+}
+
+TEST(SolverTest, RefusesGaugeFreedomUnlessFixFirst) {
+  std::string text = kTwoPoses;
+  text.erase(text.find("EDGE_SE3_PRIOR"), text.find("EDGE_SE3:QUAT") - text.find("EDGE_SE3_PRIOR"));
+  Graph graph = Read(text);
+  Expected<SolveReport> refused = Solve(SolverOptions{}, &graph);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("gauge"), std::string::npos);
+  EXPECT_NE(refused.error().message.find("--fix-first"), std::string::npos);
+
+  SolverOptions options;
+  options.fix_first = true;
+  const Pose first_before = graph.Find(0)->pose();
+  Expected<SolveReport> solved = Solve(options, &graph);
+  ASSERT_TRUE(solved.ok()) << solved.error().ToString();
+  EXPECT_EQ(graph.Find(0)->pose(), first_before);
+  ASSERT_EQ(solved->held_constant.size(), 1u);
+  EXPECT_EQ(solved->held_constant[0], 0);
+  EXPECT_LT(solved->final_cost, 1e-20);
+}
+
+TEST(SolverTest, UnusedVertexIsHeldConstantAndReported) {
+  Graph graph = Read(std::string(kTwoPoses) + "VERTEX_TRACKXYZ 7 1 2 3\n");
+  Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->unused_variables, 1);
+  ASSERT_EQ(report->held_constant.size(), 1u);
+  EXPECT_EQ(report->held_constant[0], 7);
+  EXPECT_EQ(graph.Find(7)->point(), Eigen::Vector3d(1, 2, 3));
+  EXPECT_FALSE(report->warnings.empty());
+}
+
+TEST(SolverTest, EdgeNamingOneVertexTwiceIsAnErrorNotACrash) {
+  Graph graph = Read(kTwoPoses);
+  graph.betweens[0].to = graph.betweens[0].from;
+  Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.error().line, 4);
+  EXPECT_NE(report.error().message.find("twice"), std::string::npos);
+}
+
+TEST(SolverTest, HuberKernelLowersTheCostOfALargeResidual) {
+  // One odometry residual of whitened norm 0.3·… : with Huber(0.01) the cost is
+  // 2k‖r‖ − k² (SPEC §1.5), below ½‖r‖² without it.
+  Graph graph = Read(kTwoPoses);
+  Expected<CostByKind> plain = EvaluateCost(graph);
+  SolverOptions options;
+  options.kernels[static_cast<int>(EdgeKind::kOdometry)] = {RobustKernel::Type::kHuber, 0.01};
+  Expected<CostByKind> robust = EvaluateCost(graph, options);
+  ASSERT_TRUE(plain.ok() && robust.ok());
+  const double squared_norm = 2 * (*plain)[static_cast<int>(EdgeKind::kOdometry)];
+  EXPECT_NEAR((*robust)[static_cast<int>(EdgeKind::kOdometry)],
+              0.5 * (2 * 0.01 * std::sqrt(squared_norm) - 0.01 * 0.01), 1e-15);
+}
+
+TEST(SolverTest, NamesRoundTrip) {
+  for (const char* name : {"sparse_schur", "sparse_normal_cholesky", "iterative_schur",
+                           "dense_schur"}) {
+    LinearSolverType type;
+    ASSERT_TRUE(Parse(name, &type));
+    EXPECT_STREQ(Name(type), name);
+  }
+  LinearSolverType type;
+  EXPECT_FALSE(Parse("cholmod", &type));
+}
+
+}  // namespace
+}  // namespace dynslam
