@@ -5,6 +5,7 @@
 namespace dynslam::cli {
 
 int RunSolve(int argc, char** argv);
+int RunVerify(int argc, char** argv);
 
 }  // namespace dynslam::cli
 

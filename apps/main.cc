@@ -15,6 +15,7 @@ struct Command {
 
 constexpr Command kCommands[] = {
     {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},
+    {"verify", "compare a solve's outputs with a reference solve (GTSAM)", dynslam::cli::RunVerify},
 };
 
 void PrintUsage(std::ostream& out) {
