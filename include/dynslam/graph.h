@@ -26,8 +26,6 @@ namespace dynslam {
 
 using VertexId = int64_t;  // SPEC §1.1: non-negative, below 2^63, one namespace
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
 enum class VertexType { kPose, kPoint };
 
 // SPEC §1.4 label tags, in the order roles are listed in summary.json (SPEC §4).

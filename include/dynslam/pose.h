@@ -19,6 +19,9 @@ inline constexpr int kPoseSize = 7;     // ambient size of a pose block
 inline constexpr int kTangentSize = 6;  // ξ = [ω; ρ]
 inline constexpr int kPointSize = 3;
 
+using Vector6d = Eigen::Matrix<double, kTangentSize, 1>;
+using Matrix6d = Eigen::Matrix<double, kTangentSize, kTangentSize>;  // e.g. information, [ω; ρ]
+
 struct Pose {
   std::array<double, kPoseSize> data{0, 0, 0, 1, 0, 0, 0};
 

@@ -22,8 +22,6 @@
 
 namespace dynslam {
 
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-
 namespace se3_internal {
 
 inline constexpr double kExpTaylorThetaSquared = 1e-2;  // θ² below which Exp uses series

@@ -1,0 +1,255 @@
+// Each residual of SPEC §1.2–§1.3: zero at a consistent configuration, one value computed by
+// hand, and its Jacobian through the manifold's Plus against central differences at the
+// identity, at 1e-9 rad, at a generic pose and near π (STYLE.md).
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <ceres/cost_function.h>
+#include <gtest/gtest.h>
+
+#include "cost_functions/object_kinematic_error.h"
+#include "cost_functions/object_point_measurement_error.h"
+#include "cost_functions/object_point_motion_error.h"
+#include "cost_functions/point_measurement_error.h"
+#include "cost_functions/point_motion_error.h"
+#include "cost_functions/pose_between_error.h"
+#include "cost_functions/pose_prior_error.h"
+#include "dynslam/se3.h"
+#include "dynslam/se3_manifold.h"
+
+namespace dynslam {
+namespace {
+
+using Block = std::vector<double>;
+
+Block PoseBlock(const Pose& pose) { return Block(pose.data.begin(), pose.data.end()); }
+Pose Translation(double x, double y, double z) {
+  Pose pose;
+  pose.translation() = Eigen::Vector3d(x, y, z);
+  return pose;
+}
+Pose RotationZ(double angle) {
+  return Pose::FromRotationTranslation(
+      Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())), Eigen::Vector3d::Zero());
+}
+
+Eigen::VectorXd Residual(const ceres::CostFunction& cost, const std::vector<Block>& blocks) {
+  std::vector<const double*> parameters;
+  for (const Block& block : blocks) parameters.push_back(block.data());
+  Eigen::VectorXd residual(cost.num_residuals());
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), residual.data(), nullptr));
+  return residual;
+}
+
+// Local Jacobians (ambient Jacobian × PlusJacobian for poses) against central differences of the
+// residual at Plus(x, ±h·e_i). Returns the largest relative difference.
+double JacobianError(const ceres::CostFunction& cost, const std::vector<Block>& blocks) {
+  const SE3Manifold manifold;
+  const int m = cost.num_residuals();
+  std::vector<const double*> parameters;
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> ambient;
+  std::vector<double*> jacobians;
+  for (const Block& block : blocks) {
+    parameters.push_back(block.data());
+    ambient.emplace_back(m, static_cast<int>(block.size()));
+  }
+  for (auto& j : ambient) jacobians.push_back(j.data());
+  Eigen::VectorXd residual(m);
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), residual.data(), jacobians.data()));
+
+  double worst = 0;
+  const double h = 1e-6;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const bool is_pose = blocks[b].size() == kPoseSize;
+    Eigen::MatrixXd analytic = ambient[b];
+    if (is_pose) {
+      Eigen::Matrix<double, 7, 6, Eigen::RowMajor> plus_jacobian;
+      manifold.PlusJacobian(blocks[b].data(), plus_jacobian.data());
+      analytic = ambient[b] * plus_jacobian;
+    }
+    for (int i = 0; i < analytic.cols(); ++i) {
+      std::vector<Block> plus = blocks, minus = blocks;
+      if (is_pose) {
+        double delta[6] = {0, 0, 0, 0, 0, 0};
+        delta[i] = h;
+        manifold.Plus(blocks[b].data(), delta, plus[b].data());
+        delta[i] = -h;
+        manifold.Plus(blocks[b].data(), delta, minus[b].data());
+      } else {
+        plus[b][i] += h;
+        minus[b][i] -= h;
+      }
+      const Eigen::VectorXd numeric = (Residual(cost, plus) - Residual(cost, minus)) / (2 * h);
+      const double scale = std::max(1.0, numeric.norm());
+      worst = std::max(worst, (analytic.col(i) - numeric).norm() / scale);
+    }
+  }
+  return worst;
+}
+
+// The poses a Jacobian is checked at (STYLE.md): identity, 1e-9 rad, generic, near π.
+std::vector<Pose> CheckPoses() {
+  Vector6d tiny, generic, near_pi;
+  tiny << 1e-9, 0, 0, 0.1, 0.2, 0.3;
+  generic << 0.4, -0.7, 0.2, 1.5, -2.0, 0.7;
+  near_pi << (M_PI - 1e-4) * Eigen::Vector3d(0.6, 0.8, 0).normalized(), -1, 3, 2;
+  return {Pose::Identity(), Exp(tiny), Exp(generic), Exp(near_pi)};
+}
+
+Matrix6d Information6() {
+  Matrix6d a;
+  a.setZero();
+  a.diagonal() << 9, 4, 1, 25, 16, 0.25;
+  a(0, 4) = a(4, 0) = 0.5;  // a non-diagonal term exercises the full S
+  return a;
+}
+Eigen::Matrix3d Information3() {
+  Eigen::Matrix3d a;
+  a << 4, 0.5, 0, 0.5, 9, 0.2, 0, 0.2, 1;
+  return a;
+}
+
+const Pose kOffset = Exp((Vector6d() << 0.1, 0.2, -0.3, 0.5, -1.0, 2.0).finished());
+
+TEST(PosePriorErrorTest, ZeroHandValueAndJacobian) {
+  const Pose z = kOffset;
+  std::unique_ptr<ceres::CostFunction> cost(PosePriorError::Create(z, Information6()));
+  EXPECT_LT(Residual(*cost, {PoseBlock(z)}).norm(), 1e-14);
+  // X = translation (1, 2, 3), Z = I, information diag(1,1,1,4,4,4): r = [0 0 0 2 4 6].
+  Matrix6d info = Matrix6d::Identity();
+  info.diagonal().tail<3>().setConstant(4);
+  std::unique_ptr<ceres::CostFunction> hand(PosePriorError::Create(Pose::Identity(), info));
+  Eigen::VectorXd expected(6);
+  expected << 0, 0, 0, 2, 4, 6;
+  EXPECT_LT((Residual(*hand, {PoseBlock(Translation(1, 2, 3))}) - expected).norm(), 1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x)}), 1e-7);
+    EXPECT_LT(JacobianError(*hand, {PoseBlock(x)}), 1e-7);
+  }
+}
+
+TEST(PoseBetweenErrorTest, ZeroHandValueAndJacobian) {
+  std::unique_ptr<ceres::CostFunction> cost(PoseBetweenError::Create(kOffset, Information6()));
+  const Pose a = Exp((Vector6d() << -0.5, 1.0, 0.3, 4, 5, 6).finished());
+  EXPECT_LT(Residual(*cost, {PoseBlock(a), PoseBlock(Compose(a, kOffset))}).norm(), 1e-13);
+  // A = I, B = rotation 0.3 rad about z, Z = I, information I: r = [0 0 0.3 0 0 0].
+  std::unique_ptr<ceres::CostFunction> hand(
+      PoseBetweenError::Create(Pose::Identity(), Matrix6d::Identity()));
+  Eigen::VectorXd expected(6);
+  expected << 0, 0, 0.3, 0, 0, 0;
+  EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(RotationZ(0.3))}) - expected)
+                .norm(),
+            1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(Compose(x, kOffset))}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(kOffset), PoseBlock(x)}), 1e-7);
+  }
+}
+
+TEST(PointMeasurementErrorTest, ZeroHandValueAndJacobian) {
+  const Eigen::Vector3d p_w(1, -2, 8);
+  const Eigen::Vector3d p_c = Transform(Inverse(kOffset), p_w);
+  std::unique_ptr<ceres::CostFunction> cost(PointMeasurementError::Create(p_c, Information3()));
+  EXPECT_LT(Residual(*cost, {PoseBlock(kOffset), Block{1, -2, 8}}).norm(), 1e-13);
+  // X = translation (1,0,0), m = (1,2,3), z = 0, information diag(1,4,9): r = (0, 4, 9).
+  std::unique_ptr<ceres::CostFunction> hand(PointMeasurementError::Create(
+      Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 4, 9).asDiagonal()));
+  EXPECT_LT((Residual(*hand, {PoseBlock(Translation(1, 0, 0)), Block{1, 2, 3}}) -
+             Eigen::Vector3d(0, 4, 9))
+                .norm(),
+            1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), Block{1, -2, 8}}), 1e-7);
+  }
+}
+
+TEST(PointMotionErrorTest, ZeroHandValueAndJacobian) {
+  const Eigen::Vector3d p_prev(1, -2, 8);
+  std::unique_ptr<ceres::CostFunction> cost(
+      PointMotionError::Create(Eigen::Vector3d::Zero(), Information3()));
+  const Eigen::Vector3d p_curr = Transform(kOffset, p_prev);
+  EXPECT_LT(Residual(*cost, {Block{1, -2, 8}, Block{p_curr.x(), p_curr.y(), p_curr.z()},
+                             PoseBlock(kOffset)})
+                .norm(),
+            1e-13);
+  // H = translation (1,0,0), m_prev = 0, m_curr = (2,0,0), z = 0, I: r = (1, 0, 0).
+  std::unique_ptr<ceres::CostFunction> hand(
+      PointMotionError::Create(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()));
+  EXPECT_LT((Residual(*hand, {Block{0, 0, 0}, Block{2, 0, 0}, PoseBlock(Translation(1, 0, 0))}) -
+             Eigen::Vector3d(1, 0, 0))
+                .norm(),
+            1e-15);
+  for (const Pose& h : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {Block{1, -2, 8}, Block{0.5, 0.5, 7}, PoseBlock(h)}), 1e-7);
+  }
+}
+
+TEST(ObjectPointMeasurementErrorTest, ZeroHandValueAndJacobian) {
+  const Pose camera = Exp((Vector6d() << 0.1, -0.1, 0.05, 0.3, 0.1, -2).finished());
+  const Eigen::Vector3d m_o(0.5, 0.2, -1);
+  const Eigen::Vector3d p_c = Transform(Inverse(camera), Transform(kOffset, m_o));
+  std::unique_ptr<ceres::CostFunction> cost(
+      ObjectPointMeasurementError::Create(p_c, Information3()));
+  EXPECT_LT(Residual(*cost, {PoseBlock(camera), PoseBlock(kOffset), Block{0.5, 0.2, -1}}).norm(),
+            1e-13);
+  // X = I, L = 90° about z, m = (1,0,0), z = 0, I: r = L·m = (0, 1, 0).
+  std::unique_ptr<ceres::CostFunction> hand(ObjectPointMeasurementError::Create(
+      Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()));
+  EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(RotationZ(M_PI / 2)),
+                              Block{1, 0, 0}}) -
+             Eigen::Vector3d(0, 1, 0))
+                .norm(),
+            1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(kOffset), Block{0.5, 0.2, -1}}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(camera), PoseBlock(x), Block{0.5, 0.2, -1}}), 1e-7);
+  }
+}
+
+TEST(ObjectPointMotionErrorTest, ZeroHandValueAndJacobian) {
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose h = kOffset;
+  const Pose l_curr = Compose(h, l_prev);  // kinematics hold: H = L_curr · L_prev⁻¹
+  std::unique_ptr<ceres::CostFunction> cost(ObjectPointMotionError::Create(Information3()));
+  const Block m_o{0.5, 0.2, -1};
+  EXPECT_LT(Residual(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(h), m_o}).norm(),
+            1e-13);
+  // L_prev = I, L_curr = translation (0,0,1), H = I, m = (1,0,0), I: r = (0, 0, 1).
+  std::unique_ptr<ceres::CostFunction> hand(
+      ObjectPointMotionError::Create(Eigen::Matrix3d::Identity()));
+  EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(Translation(0, 0, 1)),
+                              PoseBlock(Pose::Identity()), Block{1, 0, 0}}) -
+             Eigen::Vector3d(0, 0, 1))
+                .norm(),
+            1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(h), m_o}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x), m_o}), 1e-7);
+  }
+}
+
+TEST(ObjectKinematicErrorTest, ZeroHandValueAndJacobian) {
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose h = kOffset;
+  const Pose l_curr = Compose(h, l_prev);
+  std::unique_ptr<ceres::CostFunction> cost(ObjectKinematicError::Create(Information6()));
+  EXPECT_LT(Residual(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(h)}).norm(), 1e-13);
+  // L_prev = L_curr = I, H = translation (1,0,0), I: r = Log(H) = [0 0 0 1 0 0].
+  std::unique_ptr<ceres::CostFunction> hand(ObjectKinematicError::Create(Matrix6d::Identity()));
+  Eigen::VectorXd expected(6);
+  expected << 0, 0, 0, 1, 0, 0;
+  EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(Pose::Identity()),
+                              PoseBlock(Translation(1, 0, 0))}) -
+             expected)
+                .norm(),
+            1e-15);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x)}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(Compose(h, x)), PoseBlock(h)}), 1e-7);
+  }
+}
+
+}  // namespace
+}  // namespace dynslam
