@@ -413,7 +413,10 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
   report.convergence = recorder.TakeRows();
   for (StepRecord& row : report.convergence) row.time_s -= summary.preprocessor_time_in_seconds;
   report.steps = static_cast<int>(report.convergence.size());
-  report.iterations = summary.num_successful_steps;
+  // Ceres's num_successful_steps also counts its iteration 0; the accepted rows are the steps.
+  report.iterations = static_cast<int>(std::count_if(
+      report.convergence.begin(), report.convergence.end(),
+      [](const StepRecord& row) { return row.accepted; }));
   report.usable = summary.IsSolutionUsable();
   report.termination_detail = summary.message;
   switch (summary.termination_type) {

@@ -1,10 +1,21 @@
 // The conventions before any solve (issue: core, SPEC §0, §1.2, §1.5): for every reference graph,
 // the SPEC cost at the file's values equals GTSAM's `initial_cost` (tight profile) to 1e-9
 // relative, in total and per edge kind. GTSAM's numbers are independent of this code.
+//
+// Two documented exceptions (docs/TOLERANCES.md):
+// - a kind whose cost is rounding noise (1e-21 where the total is 1e6) is compared with a floor
+//   of 1e-15 × the total;
+// - GTSAM's Rot3::Logmap approximates the angle when it is within ~0.032 rad of π (its branch
+//   trace + 1 < 1e-3), by up to π·ε²/8 rad; SPEC's Log is exact. A graph with such residuals
+//   (torus3D has two at its initial values) is compared to 1e-6 instead, and says so.
+#include <cmath>
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include "dynslam/graph_io.h"
 #include "dynslam/json.h"
+#include "dynslam/se3.h"
 #include "dynslam/solver.h"
 #include "reference_util.h"
 
@@ -12,6 +23,26 @@ namespace dynslam {
 namespace {
 
 using testing::ReferenceGraph;
+
+// GTSAM switches to its approximate near-π formula when trace(R) + 1 < 1e-3.
+const double kGtsamNearPiAngle = M_PI - std::acos(1 - 0.5e-3);
+
+int ResidualsNearPi(const Graph& graph) {
+  auto near_pi = [](const Pose& error) { return RotationAngle(error) > kGtsamNearPiAngle; };
+  int count = 0;
+  for (const PriorEdge& e : graph.priors) {
+    count += near_pi(Compose(Inverse(e.measurement), graph.Find(e.pose)->pose()));
+  }
+  for (const BetweenEdge& e : graph.betweens) {
+    count += near_pi(Compose(Inverse(e.measurement),
+                             Compose(Inverse(graph.Find(e.from)->pose()), graph.Find(e.to)->pose())));
+  }
+  for (const KinematicEdge& e : graph.kinematic_edges) {
+    count += near_pi(Compose(Inverse(graph.Find(e.pose_curr)->pose()),
+                             Compose(graph.Find(e.motion)->pose(), graph.Find(e.pose_prev)->pose())));
+  }
+  return count;
+}
 
 class InitialCostTest : public ::testing::TestWithParam<ReferenceGraph> {};
 
@@ -24,19 +55,23 @@ TEST_P(InitialCostTest, MatchesGtsamInTotalAndPerKind) {
   Expected<CostByKind> cost = EvaluateCost(*graph);
   ASSERT_TRUE(cost.ok()) << cost.error().ToString();
 
+  const int near_pi = ResidualsNearPi(*graph);
+  const double tolerance = near_pi == 0 ? 1e-9 : 1e-6;
+  if (near_pi > 0) {
+    std::printf("%s: %d residuals within GTSAM's approximate near-pi Logmap branch; "
+                "comparing to %g\n", reference.TestName().c_str(), near_pi, tolerance);
+  }
   const double expected_total = summary->Find("initial_cost")->number();
-  EXPECT_LE(testing::RelativeDifference(TotalCost(*cost), expected_total), 1e-9)
-      << "total " << TotalCost(*cost) << " vs GTSAM " << expected_total;
+  const double total = TotalCost(*cost);
+  EXPECT_LE(testing::RelativeDifference(total, expected_total), tolerance)
+      << "total " << total << " vs GTSAM " << expected_total;
   for (const EdgeKind kind : kAllEdgeKinds) {
     const Json* expected = summary->FindPath({"cost_by_kind", "initial", EdgeKindName(kind)});
     ASSERT_NE(expected, nullptr) << EdgeKindName(kind);
     const double ours = (*cost)[static_cast<int>(kind)];
-    if (expected->number() == 0) {
-      EXPECT_EQ(ours, 0) << EdgeKindName(kind);
-    } else {
-      EXPECT_LE(testing::RelativeDifference(ours, expected->number()), 1e-9)
-          << EdgeKindName(kind) << ": " << ours << " vs GTSAM " << expected->number();
-    }
+    EXPECT_LE(std::abs(ours - expected->number()),
+              tolerance * std::abs(expected->number()) + 1e-15 * expected_total)
+        << EdgeKindName(kind) << ": " << ours << " vs GTSAM " << expected->number();
   }
 }
 

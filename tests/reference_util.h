@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct ReferenceGraph {
     return name;
   }
 };
+
+// gtest prints parameters with this (instead of their bytes).
+inline void PrintTo(const ReferenceGraph& graph, std::ostream* out) { *out << graph.graph_path; }
 
 inline std::vector<ReferenceGraph> ReferenceGraphs() {
   std::vector<ReferenceGraph> graphs;
