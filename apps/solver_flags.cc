@@ -57,7 +57,8 @@ SolverFlags::SolverFlags(ArgParser* parser)
       function_tolerance_(defaults_.function_tolerance),
       gradient_tolerance_(defaults_.gradient_tolerance),
       parameter_tolerance_(defaults_.parameter_tolerance),
-      fix_first_(defaults_.fix_first) {
+      fix_first_(defaults_.fix_first),
+      eliminate_object_points_(defaults_.eliminate_object_points) {
   parser->AddChoice("minimizer", &minimizer_, {"lm", "dogleg"},
                     "trust-region strategy: Levenberg-Marquardt or Powell's dogleg");
   parser->AddChoice("linear-solver", &linear_solver_,
@@ -73,6 +74,9 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "stop when the max-norm of the projected gradient is below this", 0, 1);
   parser->AddDouble("parameter-tolerance", &parameter_tolerance_,
                     "stop when the step is this small relative to the parameters", 0, 1);
+  parser->AddFlag("eliminate-object-points", &eliminate_object_points_,
+                  "Schur solvers: eliminate object-frame points first too (slower on the "
+                  "reference scenes; static points are always eliminated first)");
   parser->AddFlag("fix-first", &fix_first_,
                   "hold the smallest-id pose constant (needed when the graph has no prior)");
   parser->AddString("robust", &robust_,
@@ -93,6 +97,7 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   options->gradient_tolerance = gradient_tolerance_;
   options->parameter_tolerance = parameter_tolerance_;
   options->fix_first = fix_first_;
+  options->eliminate_object_points = eliminate_object_points_;
   return ParseRobust(robust_, options);
 }
 

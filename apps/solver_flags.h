@@ -29,6 +29,7 @@ class SolverFlags {
   double gradient_tolerance_;
   double parameter_tolerance_;
   bool fix_first_;
+  bool eliminate_object_points_;
   std::string robust_;
 };
 

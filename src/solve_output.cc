@@ -120,6 +120,7 @@ Json SolverJson(const SolverOptions& options) {
       .Set("gradient_tolerance", options.gradient_tolerance)
       .Set("parameter_tolerance", options.parameter_tolerance)
       .Set("fix_first", options.fix_first)
+      .Set("eliminate_object_points", options.eliminate_object_points)
       .Set("robust_kernels", std::move(kernels));
 }
 

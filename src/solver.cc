@@ -83,9 +83,11 @@ class Assembly {
   // Cost per kind at the current values of the blocks.
   CostByKind Evaluate();
   void WriteBack(Graph* graph) const;
-  // Schur ordering: points no residual joins to another point go first. Empty when there is
-  // no such point (Ceres then finds an independent set itself).
-  std::shared_ptr<ceres::ParameterBlockOrdering> MakeOrdering(std::string* description);
+  // Schur ordering: points no residual joins to another point go first — object-frame points
+  // only when asked (docs/SOLVER.md). Null when no point can go first (Ceres then finds an
+  // independent set itself).
+  std::shared_ptr<ceres::ParameterBlockOrdering> MakeOrdering(bool eliminate_object_points,
+                                                              std::string* description);
   const std::vector<VertexId>& unused() const { return unused_; }
   // SPEC §1.7 --fix-first: holds the smallest-id pose that is in the problem constant.
   std::optional<VertexId> HoldFirstPoseConstant();
@@ -102,6 +104,7 @@ class Assembly {
   std::unordered_map<VertexId, size_t> index_;
   std::vector<VertexId> ids_;
   std::vector<VertexType> types_;
+  std::vector<Role> roles_;
   std::vector<std::array<double, kPoseSize>> values_;
   std::vector<VertexId> unused_;
   SE3Manifold manifold_;
@@ -139,6 +142,7 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
     a->index_.emplace(id, a->values_.size());
     a->ids_.push_back(id);
     a->types_.push_back(vertex.type);
+    a->roles_.push_back(vertex.label.role);
     a->values_.push_back(vertex.value);
   }
   for (int k = 0; k < kNumEdgeKinds; ++k) a->losses_[k] = MakeLoss(options.kernels[k]);
@@ -229,7 +233,8 @@ void Assembly::WriteBack(Graph* graph) const {
   }
 }
 
-std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(std::string* description) {
+std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(bool eliminate_object_points,
+                                                                      std::string* description) {
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   int64_t first = 0;
   int64_t joined = 0;
@@ -237,8 +242,9 @@ std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(std::strin
     double* block = values_[i].data();
     if (!problem_->HasParameterBlock(block)) continue;
     const bool is_point = types_[i] == VertexType::kPoint;
-    const bool independent = is_point && joined_points_.count(ids_[i]) == 0;
-    joined += is_point && !independent;
+    const bool independent = is_point && joined_points_.count(ids_[i]) == 0 &&
+                             (eliminate_object_points || roles_[i] != Role::kObjectPoint);
+    joined += is_point && !independent;  // joined by motion edges, or object-frame points
     first += independent;
     ordering->AddElementToGroup(block, independent ? 0 : 1);
   }
@@ -248,7 +254,7 @@ std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(std::strin
   }
   *description = std::to_string(first) + " points first";
   if (joined > 0) {
-    *description += "; " + std::to_string(joined) + " points joined by motion edges kept with the poses";
+    *description += "; " + std::to_string(joined) + " points kept with the poses";
   }
   return ordering;
 }
@@ -401,7 +407,20 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
   report.initial_cost = TotalCost(report.initial_cost_by_kind);
 
   ceres::Solver::Options ceres_options = MakeCeresOptions(options);
-  ceres_options.linear_solver_ordering = assembly.MakeOrdering(&report.eliminated_first);
+  // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
+  // ordering only limits the fill-reducing ordering.
+  if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {
+    // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
+  // ordering only limits the fill-reducing ordering.
+  if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {
+    ceres_options.linear_solver_ordering =
+        assembly.MakeOrdering(options.eliminate_object_points, &report.eliminated_first);
+  } else {
+    report.eliminated_first = "none: sparse Cholesky orders all variables to reduce fill";
+  }
+  } else {
+    report.eliminated_first = "none: sparse Cholesky orders all variables to reduce fill";
+  }
   std::string why_invalid;
   if (!ceres_options.IsValid(&why_invalid)) return Error{"", 0, "solver options: " + why_invalid};
 

@@ -54,6 +54,10 @@ struct SolverOptions {
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
+  // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
+  // tied to every object pose and motion of its segment, so eliminating it makes the reduced
+  // system dense per segment (3× slower linear solves on kitti_0003 oc_b, docs/SOLVER.md).
+  bool eliminate_object_points = false;
   // SPEC §1.7: a graph with no prior is refused unless the smallest-id pose is held constant.
   bool fix_first = false;
   // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
