@@ -1,11 +1,14 @@
 // dynslam solve GRAPH --out DIR [--gt GT] [solver options]   (SPEC §4)
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "cli.h"
 #include "commands.h"
 #include "dynslam/graph_io.h"
+#include "dynslam/ground_truth.h"
+#include "dynslam/metrics.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "solver_flags.h"
@@ -76,6 +79,15 @@ int RunSolve(int argc, char** argv) {
     std::cerr << "error: " << graph.error().ToString() << "\n";
     return kExitBadInput;
   }
+  std::optional<GroundTruth> ground_truth;
+  if (!gt_path.empty()) {
+    Expected<GroundTruth> read = ReadGroundTruth(gt_path);
+    if (!read.ok()) {
+      std::cerr << "error: " << read.error().ToString() << "\n";
+      return kExitBadInput;
+    }
+    ground_truth = std::move(read).value();
+  }
   SolveOutputs outputs;
   outputs.input = graph_path;
   for (const auto& [tag, count] : read_report.skipped_tags) {
@@ -92,16 +104,33 @@ int RunSolve(int argc, char** argv) {
   outputs.solved = &*graph;
   outputs.report = &*report;
   outputs.options = &options;
-  outputs.object_poses = ObjectPoseVariables(*graph);
-  if (!gt_path.empty()) {
-    std::cerr << "error: --gt is not available yet in this build\n";
-    return kExitBadInput;
+  if (ground_truth) {
+    outputs.metrics = MetricsJson(ComputeMetrics(*graph, *ground_truth));
+    for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *ground_truth)) {
+      outputs.object_poses.push_back({key.first, key.second, pose});
+    }
+  } else {
+    outputs.object_poses = ObjectPoseVariables(*graph);
   }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
     std::cerr << "error: " << status.error().ToString() << "\n";
     return kExitFailed;
   }
   PrintSummary(outputs, out_dir);
+  if (outputs.metrics) {
+    const Json& m = *outputs.metrics;
+    std::printf("metrics (SPEC §5): camera %.4f deg %.4f m over %g pairs; object motion %.4f deg "
+                "%.4f m over %g motions; object pose %.4f deg %.4f m over %g pairs\n",
+                m.FindPath({"camera", "mean_rot_deg"})->number(),
+                m.FindPath({"camera", "mean_trans_m"})->number(),
+                m.FindPath({"camera", "pairs"})->number(),
+                m.FindPath({"object_motion", "mean_rot_deg"})->number(),
+                m.FindPath({"object_motion", "mean_trans_m"})->number(),
+                m.FindPath({"object_motion", "motions"})->number(),
+                m.FindPath({"object_pose", "mean_rot_deg"})->number(),
+                m.FindPath({"object_pose", "mean_trans_m"})->number(),
+                m.FindPath({"object_pose", "pairs"})->number());
+  }
   if (!report->usable) {
     std::cerr << "error: the solve failed: " << report->termination_detail << "\n";
     return kExitFailed;

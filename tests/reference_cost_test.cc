@@ -15,7 +15,6 @@
 
 #include "dynslam/graph_io.h"
 #include "dynslam/json.h"
-#include "dynslam/se3.h"
 #include "dynslam/solver.h"
 #include "reference_util.h"
 
@@ -23,26 +22,6 @@ namespace dynslam {
 namespace {
 
 using testing::ReferenceGraph;
-
-// GTSAM switches to its approximate near-π formula when trace(R) + 1 < 1e-3.
-const double kGtsamNearPiAngle = M_PI - std::acos(1 - 0.5e-3);
-
-int ResidualsNearPi(const Graph& graph) {
-  auto near_pi = [](const Pose& error) { return RotationAngle(error) > kGtsamNearPiAngle; };
-  int count = 0;
-  for (const PriorEdge& e : graph.priors) {
-    count += near_pi(Compose(Inverse(e.measurement), graph.Find(e.pose)->pose()));
-  }
-  for (const BetweenEdge& e : graph.betweens) {
-    count += near_pi(Compose(Inverse(e.measurement),
-                             Compose(Inverse(graph.Find(e.from)->pose()), graph.Find(e.to)->pose())));
-  }
-  for (const KinematicEdge& e : graph.kinematic_edges) {
-    count += near_pi(Compose(Inverse(graph.Find(e.pose_curr)->pose()),
-                             Compose(graph.Find(e.motion)->pose(), graph.Find(e.pose_prev)->pose())));
-  }
-  return count;
-}
 
 class InitialCostTest : public ::testing::TestWithParam<ReferenceGraph> {};
 
@@ -55,7 +34,7 @@ TEST_P(InitialCostTest, MatchesGtsamInTotalAndPerKind) {
   Expected<CostByKind> cost = EvaluateCost(*graph);
   ASSERT_TRUE(cost.ok()) << cost.error().ToString();
 
-  const int near_pi = ResidualsNearPi(*graph);
+  const int near_pi = testing::ResidualsInGtsamNearPiBranch(*graph);
   const double tolerance = near_pi == 0 ? 1e-9 : 1e-6;
   if (near_pi > 0) {
     std::printf("%s: %d residuals within GTSAM's approximate near-pi Logmap branch; "

@@ -48,7 +48,7 @@ struct SolverOptions {
   LinearSolverType linear_solver = LinearSolverType::kSparseSchur;
   SparseBackend sparse_backend = SparseBackend::kSuiteSparse;
   int threads = 1;
-  int max_iterations = 200;
+  int max_iterations = 500;  // GTSAM tight profile's maxIterations (SPEC §6)
   // Ceres's tolerances (Solver::Options); tighter than Ceres's defaults so that a solve lands
   // on the optimum to ~1e-10 relative (the GTSAM tight_exact reference, SPEC §6).
   double function_tolerance = 1e-12;

@@ -41,10 +41,11 @@ struct VerifyReport {
 };
 
 // `result_dir` and `reference_dir` each hold summary.json and, where present, solution.g2o and
-// metrics (reference: metrics.json; ours: summary.json's `metrics`). Variables compared by role:
-// cameras, static points and motions always; dynamic points reported only; object poses and
-// object-frame points asserted when the reference solve converged (termination is not
-// max_iterations), as the reference README says they are then well determined.
+// metrics (reference: metrics.json; ours: summary.json's `metrics`). Asserted: costs, cameras,
+// static points, motions, camera and object-motion metrics. Reported only: per-kind final costs,
+// iterations, dynamic points, object poses and object-frame points (not determined at frames
+// with few tracked points: equal-cost solutions differ, docs/SPEC_NOTES.md) and the object-pose
+// metrics of object-centric graphs that follow from them.
 Expected<VerifyReport> Verify(const std::string& result_dir, const std::string& reference_dir,
                               const VerifyTolerances& tolerances = {});
 

@@ -30,9 +30,13 @@ install_missing_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# configure_and_build [TARGET…]: everything when no target is named.
 configure_and_build() {
   log "configuring $DYNSLAM_BUILD"
-  cmake -S "$DYNSLAM_ROOT" -B "$DYNSLAM_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake -S "$DYNSLAM_ROOT" -B "$DYNSLAM_BUILD" -DCMAKE_BUILD_TYPE=Release \
+    -DDYNSLAM_BUILD_TESTS=ON -DDYNSLAM_BUILD_APPS=ON >/dev/null
   log "building with -j$DYNSLAM_JOBS"
-  cmake --build "$DYNSLAM_BUILD" -j"$DYNSLAM_JOBS"
+  local targets=()
+  for target in "$@"; do targets+=(--target "$target"); done
+  cmake --build "$DYNSLAM_BUILD" -j"$DYNSLAM_JOBS" "${targets[@]}"
 }

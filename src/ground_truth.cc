@@ -1,0 +1,123 @@
+#include "dynslam/ground_truth.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+namespace dynslam {
+namespace {
+
+std::vector<std::string_view> Fields(const std::string& line) {
+  std::vector<std::string_view> fields;
+  std::string_view rest(line);
+  if (const size_t hash = rest.find('#'); hash != std::string_view::npos) rest = rest.substr(0, hash);
+  size_t i = 0;
+  while (i < rest.size()) {
+    while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
+    const size_t start = i;
+    while (i < rest.size() && rest[i] != ' ' && rest[i] != '\t' && rest[i] != '\r') ++i;
+    if (i > start) fields.push_back(rest.substr(start, i - start));
+  }
+  return fields;
+}
+
+template <typename T>
+bool ParseField(std::string_view text, T* value) {
+  if (!text.empty() && text[0] == '+') text.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
+  return ec == std::errc() && end == text.data() + text.size() && !text.empty();
+}
+
+}  // namespace
+
+const Pose* GroundTruth::Camera(int64_t frame) const {
+  auto it = cameras.find(frame);
+  return it == cameras.end() ? nullptr : &it->second;
+}
+
+const Pose* GroundTruth::Object(int64_t object, int64_t frame) const {
+  auto it = objects.find({object, frame});
+  return it == objects.end() ? nullptr : &it->second;
+}
+
+Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path, 0, "cannot open the ground-truth file"};
+  GroundTruth gt;
+  std::string line;
+  int64_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::vector<std::string_view> f = Fields(line);
+    if (f.empty()) continue;
+    auto fail = [&](const std::string& message) { return Error{path, number, message}; };
+    const bool camera = f[0] == "CAMERA";
+    if (!camera && f[0] != "OBJECT") {
+      return fail("unknown record '" + std::string(f[0]) + "' (CAMERA or OBJECT, SPEC §2)");
+    }
+    const size_t expected = camera ? 9 : 10;
+    if (f.size() != expected) {
+      return fail(std::string(f[0]) + " has " + std::to_string(f.size() - 1) +
+                  " fields, expected " + std::to_string(expected - 1) +
+                  (camera ? " (k tx ty tz qx qy qz qw)" : " (k j tx ty tz qx qy qz qw)"));
+    }
+    int64_t frame = 0, object = 0;
+    if (!ParseField(f[1], &frame) || frame < 0) return fail("frame '" + std::string(f[1]) + "' is not a non-negative integer");
+    if (!camera && (!ParseField(f[2], &object) || object < 0)) {
+      return fail("object '" + std::string(f[2]) + "' is not a non-negative integer");
+    }
+    const size_t first = camera ? 2 : 3;
+    double v[7];
+    for (int i = 0; i < 7; ++i) {
+      if (!ParseField(f[first + i], &v[i]) || !std::isfinite(v[i])) {
+        return fail("field '" + std::string(f[first + i]) + "' is not a finite number");
+      }
+    }
+    Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
+    if (q.norm() == 0) return fail("zero quaternion");
+    if (std::abs(q.norm() - 1) > 1e-12) q.normalize();
+    const Pose pose = Pose::FromRotationTranslation(q, Eigen::Vector3d(v[0], v[1], v[2]));
+    const bool inserted = camera ? gt.cameras.emplace(frame, pose).second
+                                 : gt.objects.emplace(std::pair{object, frame}, pose).second;
+    if (!inserted) {
+      return fail(camera ? "second CAMERA record for frame " + std::to_string(frame)
+                         : "second OBJECT record for object " + std::to_string(object) +
+                               " at frame " + std::to_string(frame));
+    }
+  }
+  return gt;
+}
+
+Status WriteGroundTruth(const GroundTruth& ground_truth, const std::string& path,
+                        const std::string& header) {
+  std::string text;
+  std::istringstream header_lines(header);
+  for (std::string line; std::getline(header_lines, line);) text += "# " + line + "\n";
+  char buffer[64];
+  auto pose_fields = [&](const Pose& pose) {
+    for (const int i : {4, 5, 6, 0, 1, 2, 3}) {
+      std::snprintf(buffer, sizeof(buffer), " %.17g", pose.data[i]);
+      text += buffer;
+    }
+    text += "\n";
+  };
+  for (const auto& [frame, pose] : ground_truth.cameras) {
+    text += "CAMERA " + std::to_string(frame);
+    pose_fields(pose);
+  }
+  for (const auto& [key, pose] : ground_truth.objects) {
+    text += "OBJECT " + std::to_string(key.second) + " " + std::to_string(key.first);
+    pose_fields(pose);
+  }
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) return Error{path, 0, "cannot write the ground-truth file"};
+  return Status::Ok();
+}
+
+}  // namespace dynslam

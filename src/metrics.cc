@@ -1,0 +1,194 @@
+#include "dynslam/metrics.h"
+
+#include <cmath>
+#include <vector>
+
+namespace dynslam {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / M_PI;
+
+// Small Pose algebra without Ceres (the graph layer does not include se3.h's Jet machinery).
+Pose Multiply(const Pose& a, const Pose& b) {
+  return Pose::FromRotationTranslation(a.rotation() * b.rotation(),
+                                       a.rotation() * b.translation() + a.translation());
+}
+Pose Invert(const Pose& pose) {
+  const Eigen::Quaterniond q_inv = pose.rotation().conjugate();
+  return Pose::FromRotationTranslation(q_inv, -(q_inv * pose.translation()));
+}
+
+struct Accumulator {
+  std::map<int64_t, std::vector<std::pair<double, double>>> per_object;
+
+  void Add(int64_t object, const Pose& estimate, const Pose& truth) {
+    per_object[object].push_back(PoseError(estimate, truth));
+  }
+
+  ObjectErrors Finish() const {
+    ObjectErrors errors;
+    for (const auto& [object, samples] : per_object) {
+      ErrorMean mean;
+      mean.count = static_cast<int64_t>(samples.size());
+      for (const auto& [rot, trans] : samples) {
+        mean.mean_rot_deg += rot / mean.count;
+        mean.mean_trans_m += trans / mean.count;
+      }
+      errors.per_object[object] = mean;
+      errors.count += mean.count;
+    }
+    errors.objects = static_cast<int64_t>(errors.per_object.size());
+    for (const auto& [object, mean] : errors.per_object) {
+      errors.mean_rot_deg += mean.mean_rot_deg / errors.objects;
+      errors.mean_trans_m += mean.mean_trans_m / errors.objects;
+    }
+    return errors;
+  }
+};
+
+// Variables of one role by (object, frame).
+std::map<std::pair<int64_t, int64_t>, Pose> ByObjectAndFrame(const Graph& graph, Role role) {
+  std::map<std::pair<int64_t, int64_t>, Pose> poses;
+  for (const auto& [id, vertex] : graph.vertices) {
+    if (vertex.label.role == role) poses[{vertex.label.object, vertex.label.frame}] = vertex.pose();
+  }
+  return poses;
+}
+
+bool IsObjectCentric(const Graph& graph) {
+  for (const auto& [id, vertex] : graph.vertices) {
+    if (vertex.label.role == Role::kObjectPose) return true;
+  }
+  return false;
+}
+
+// World-centric: L_{k0} = L^gt_{k0} at the start of each run of motions at consecutive frames,
+// then L_k = H_k · L_{k−1} (SPEC §5, paper §V-E).
+std::map<std::pair<int64_t, int64_t>, Pose> ComposeFromMotions(
+    const std::map<std::pair<int64_t, int64_t>, Pose>& motions, const GroundTruth& gt,
+    int64_t* segments_without_start) {
+  std::map<std::pair<int64_t, int64_t>, Pose> poses;
+  *segments_without_start = 0;
+  bool skipping = false;
+  for (auto it = motions.begin(); it != motions.end(); ++it) {
+    const auto [object, frame] = it->first;
+    const bool starts_segment = it == motions.begin() || std::prev(it)->first.first != object ||
+                                std::prev(it)->first.second != frame - 1;
+    if (starts_segment) {
+      const Pose* start = gt.Object(object, frame - 1);
+      skipping = start == nullptr;
+      if (skipping) {
+        ++*segments_without_start;
+        continue;
+      }
+      poses[{object, frame - 1}] = *start;
+    }
+    if (skipping) continue;
+    poses[{object, frame}] = Multiply(it->second, poses.at({object, frame - 1}));
+  }
+  return poses;
+}
+
+}  // namespace
+
+std::pair<double, double> PoseError(const Pose& estimate, const Pose& truth) {
+  const Pose error = Multiply(Invert(estimate), truth);
+  const Eigen::Quaterniond q = error.rotation();
+  const double angle = 2.0 * std::atan2(q.vec().norm(), std::abs(q.w()));
+  return {angle * kDegreesPerRadian, error.translation().norm()};
+}
+
+std::map<std::pair<int64_t, int64_t>, Pose> EstimatedObjectPoses(const Graph& solved,
+                                                                 const GroundTruth& ground_truth) {
+  if (IsObjectCentric(solved)) return ByObjectAndFrame(solved, Role::kObjectPose);
+  int64_t skipped = 0;
+  return ComposeFromMotions(ByObjectAndFrame(solved, Role::kMotion), ground_truth, &skipped);
+}
+
+Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
+  Metrics metrics;
+  metrics.object_centric = IsObjectCentric(solved);
+
+  std::map<int64_t, Pose> cameras;
+  for (const auto& [id, vertex] : solved.vertices) {
+    if (vertex.label.role == Role::kCamera) cameras[vertex.label.frame] = vertex.pose();
+  }
+  for (const auto& [frame, pose] : cameras) {
+    auto previous = cameras.find(frame - 1);
+    const Pose* truth = gt.Camera(frame);
+    const Pose* truth_previous = gt.Camera(frame - 1);
+    if (previous == cameras.end() || truth == nullptr || truth_previous == nullptr) continue;
+    const auto [rot, trans] = PoseError(Multiply(Invert(previous->second), pose),
+                                        Multiply(Invert(*truth_previous), *truth));
+    ++metrics.camera.count;
+    metrics.camera.mean_rot_deg += rot;
+    metrics.camera.mean_trans_m += trans;
+  }
+  if (metrics.camera.count > 0) {
+    metrics.camera.mean_rot_deg /= metrics.camera.count;
+    metrics.camera.mean_trans_m /= metrics.camera.count;
+  }
+
+  const auto motions = ByObjectAndFrame(solved, Role::kMotion);
+  Accumulator motion_errors;
+  for (const auto& [key, motion] : motions) {
+    const auto [object, frame] = key;
+    const Pose* truth = gt.Object(object, frame);
+    const Pose* truth_previous = gt.Object(object, frame - 1);
+    if (truth == nullptr || truth_previous == nullptr) continue;
+    motion_errors.Add(object, motion, Multiply(*truth, Invert(*truth_previous)));
+  }
+  metrics.object_motion = motion_errors.Finish();
+
+  const auto poses =
+      metrics.object_centric
+          ? ByObjectAndFrame(solved, Role::kObjectPose)
+          : ComposeFromMotions(motions, gt, &metrics.segments_without_ground_truth_start);
+  Accumulator pose_errors;
+  for (const auto& [key, motion] : motions) {
+    const auto [object, frame] = key;
+    auto current = poses.find({object, frame});
+    auto previous = poses.find({object, frame - 1});
+    const Pose* truth = gt.Object(object, frame);
+    const Pose* truth_previous = gt.Object(object, frame - 1);
+    if (current == poses.end() || previous == poses.end() || truth == nullptr ||
+        truth_previous == nullptr) {
+      continue;
+    }
+    pose_errors.Add(object, Multiply(Invert(previous->second), current->second),
+                    Multiply(Invert(*truth_previous), *truth));
+  }
+  metrics.object_pose = pose_errors.Finish();
+  return metrics;
+}
+
+Json MetricsJson(const Metrics& metrics) {
+  auto family = [](const ObjectErrors& errors, const char* count_name) {
+    Json per_object = Json::Object();
+    for (const auto& [object, mean] : errors.per_object) {
+      per_object.Set(std::to_string(object), Json::Object()
+                                                 .Set(count_name, mean.count)
+                                                 .Set("mean_rot_deg", mean.mean_rot_deg)
+                                                 .Set("mean_trans_m", mean.mean_trans_m));
+    }
+    return Json::Object()
+        .Set(count_name, errors.count)
+        .Set("objects", errors.objects)
+        .Set("mean_rot_deg", errors.mean_rot_deg)
+        .Set("mean_trans_m", errors.mean_trans_m)
+        .Set("per_object", std::move(per_object));
+  };
+  Json object_pose = family(metrics.object_pose, "pairs");
+  object_pose.Set("segments_without_ground_truth_start",
+                  metrics.segments_without_ground_truth_start);
+  return Json::Object()
+      .Set("object_centric", metrics.object_centric)
+      .Set("camera", Json::Object()
+                         .Set("pairs", metrics.camera.count)
+                         .Set("mean_rot_deg", metrics.camera.mean_rot_deg)
+                         .Set("mean_trans_m", metrics.camera.mean_trans_m))
+      .Set("object_motion", family(metrics.object_motion, "motions"))
+      .Set("object_pose", std::move(object_pose));
+}
+
+}  // namespace dynslam

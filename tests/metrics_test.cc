@@ -1,0 +1,101 @@
+// SPEC §5 metrics: a hand-computed case, and the reference metrics.json of every GTSAM
+// tight_exact solution recomputed from its solution.g2o and the scene's gt.txt.
+#include "dynslam/metrics.h"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "dynslam/graph_io.h"
+#include "reference_util.h"
+
+namespace dynslam {
+namespace {
+
+Pose TranslationZ(double z) {
+  Pose pose;
+  pose.translation() = Eigen::Vector3d(0, 0, z);
+  return pose;
+}
+
+// Cameras at z = 0, 1, 2.5 against ground truth 0, 1, 2: pair (0,1) exact, pair (1,2) off by
+// 0.5 m → mean E_t = 0.25 m over 2 pairs, E_r = 0. Object 3 moves +1 m per frame in truth; its
+// estimated motion at frame 1 moves 1.2 m → one motion with E_t = 0.2 m.
+TEST(MetricsTest, HandComputedCameraAndMotionErrors) {
+  std::istringstream in(
+      "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 0 0 1 0 0 0 1\n"
+      "VERTEX_SE3:QUAT 2 0 0 2.5 0 0 0 1\nVERTEX_SE3:QUAT 3 1.2 0 0 0 0 0 1\n"
+      "LABEL_CAMERA 0 0\nLABEL_CAMERA 1 1\nLABEL_CAMERA 2 2\nLABEL_MOTION 3 3 1\n");
+  Expected<Graph> graph = ReadGraph(in, "hand.g2o");
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  GroundTruth gt;
+  for (int k = 0; k < 3; ++k) gt.cameras[k] = TranslationZ(k);
+  gt.objects[{3, 0}] = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), {5, 0, 0});
+  gt.objects[{3, 1}] = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), {6, 0, 0});
+  const Metrics m = ComputeMetrics(*graph, gt);
+  EXPECT_EQ(m.camera.count, 2);
+  EXPECT_NEAR(m.camera.mean_trans_m, 0.25, 1e-15);
+  EXPECT_EQ(m.camera.mean_rot_deg, 0);
+  EXPECT_EQ(m.object_motion.count, 1);
+  EXPECT_EQ(m.object_motion.objects, 1);
+  EXPECT_NEAR(m.object_motion.mean_trans_m, 0.2, 1e-15);
+  // World-centric pose: L_0 = L^gt_0, L_1 = H_1 · L_0 → relative pose error equals the motion's.
+  EXPECT_EQ(m.object_pose.count, 1);
+  EXPECT_NEAR(m.object_pose.mean_trans_m, 0.2, 1e-15);
+}
+
+TEST(MetricsTest, RotationErrorIsInDegreesAndRobustNearPi) {
+  const Pose identity;
+  Pose half_turn;
+  half_turn.data = {0, 0, 1, 0, 0, 0, 0};  // 180° about z
+  EXPECT_NEAR(PoseError(identity, half_turn).first, 180.0, 1e-12);
+  Pose quarter = Pose::FromRotationTranslation(
+      Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX())), {0, 0, 0});
+  EXPECT_NEAR(PoseError(quarter, identity).first, 90.0, 1e-12);
+}
+
+// Every numeric leaf of the reference metrics equals ours (counts exactly, means to 1e-9).
+void ExpectSameNumbers(const Json& ours, const Json& reference, const std::string& path) {
+  for (const auto& [key, value] : reference.members()) {
+    const Json* mine = ours.Find(key);
+    ASSERT_NE(mine, nullptr) << path + key;
+    if (value.is_object()) {
+      ExpectSameNumbers(*mine, value, path + key + ".");
+    } else if (value.is_number()) {
+      EXPECT_NEAR(mine->number(), value.number(), 1e-9 * std::max(1.0, std::abs(value.number())))
+          << path + key;
+    }
+  }
+}
+
+class ReferenceMetricsTest : public ::testing::TestWithParam<testing::ReferenceGraph> {};
+
+TEST_P(ReferenceMetricsTest, RecomputedFromTheSolutionMatchGtsamMetrics) {
+  const testing::ReferenceGraph& reference = GetParam();
+  const std::filesystem::path solve_dir = reference.ProfileDir("tight_exact");
+  if (!std::filesystem::exists(solve_dir / "metrics.json")) GTEST_SKIP() << "no metrics.json";
+  Expected<Graph> solution = ReadGraph((solve_dir / "solution.g2o").string());
+  ASSERT_TRUE(solution.ok()) << solution.error().ToString();
+  const std::filesystem::path scene = std::filesystem::path(reference.graph_path).parent_path().parent_path();
+  Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
+  ASSERT_TRUE(gt.ok()) << gt.error().ToString();
+  Expected<Json> expected = Json::ReadFile((solve_dir / "metrics.json").string());
+  ASSERT_TRUE(expected.ok()) << expected.error().ToString();
+  const Json ours = MetricsJson(ComputeMetrics(*solution, *gt));
+  for (const char* family : {"camera", "object_motion", "object_pose"}) {
+    ASSERT_NE(expected->Find(family), nullptr) << family;
+    ExpectSameNumbers(*ours.Find(family), *expected->Find(family), std::string(family) + ".");
+  }
+  EXPECT_EQ(ours.Find("object_centric")->boolean(), expected->Find("object_centric")->boolean());
+}
+
+INSTANTIATE_TEST_SUITE_P(Reference, ReferenceMetricsTest,
+                         ::testing::ValuesIn(testing::ReferenceGraphs()),
+                         [](const auto& info) { return info.param.TestName(); });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ReferenceMetricsTest);
+
+}  // namespace
+}  // namespace dynslam
