@@ -24,9 +24,10 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ReferenceGraph;
 
-double Number(const std::string& summary_path, const char* key) {
+double Number(const std::string& summary_path, std::initializer_list<const char*> path) {
   Expected<Json> summary = Json::ReadFile(summary_path);
-  return summary.ok() ? summary->Find(key)->number() : std::nan("");
+  const Json* node = summary.ok() ? summary->FindPath(path) : nullptr;
+  return node != nullptr ? node->number() : std::nan("");
 }
 
 class ReferenceSolveTest : public ::testing::TestWithParam<ReferenceGraph> {};
@@ -56,11 +57,14 @@ TEST_P(ReferenceSolveTest, ReachesTheOptimumAndMatchesTightExact) {
       fs::temp_directory_path() / ("dynslam_reference_" + reference.TestName());
   ASSERT_TRUE(WriteSolveOutputs(out_dir.string(), outputs).ok());
 
-  const double released = Number(reference.ProfileDir("released") + "/summary.json", "final_cost");
-  const double tight = Number(reference.ProfileDir("tight") + "/summary.json", "final_cost");
-  std::printf("%s: final %.17g, %d iterations, %.3f s (GTSAM released %.17g, tight %.17g)\n",
+  const std::string released = reference.ProfileDir("released") + "/summary.json";
+  const double tight = Number(reference.ProfileDir("tight") + "/summary.json", {"final_cost"});
+  // GTSAM's released settings are the anchor of the benchmarks: reported, not asserted.
+  std::printf("%s: final %.17g, %d iterations, %.3f s (GTSAM released: %.17g in %g iterations, "
+              "%g s; tight %.17g)\n",
               reference.TestName().c_str(), report->final_cost, report->iterations,
-              report->time_total_s, released, tight);
+              report->time_total_s, Number(released, {"final_cost"}), Number(released, {"iterations"}),
+              Number(released, {"time_s", "total"}), tight);
   EXPECT_LE(report->final_cost, tight) << "GTSAM's own answer is lower";
 
   VerifyTolerances tolerances;
