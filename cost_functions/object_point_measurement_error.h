@@ -22,10 +22,8 @@ class ObjectPointMeasurementError {
                   T* residual) const {
     T p_w[3];
     PoseTransformPoint(L_w_o, m_o, p_w);
-    T T_c_w[kPoseSize];
-    PoseInverse(T_w_c, T_c_w);
     Eigen::Matrix<T, 3, 1> p_c;
-    PoseTransformPoint(T_c_w, p_w, p_c.data());
+    PoseInverseTransformPoint(T_w_c, p_w, p_c.data());
     Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
     r =
         sqrt_information_.cast<T>() * (p_c - p_c_measured_.cast<T>());

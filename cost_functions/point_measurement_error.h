@@ -18,10 +18,8 @@ class PointMeasurementError {
 
   template <typename T>
   bool operator()(const T* const T_w_c, const T* const p_w, T* residual) const {
-    T T_c_w[kPoseSize];
-    PoseInverse(T_w_c, T_c_w);
     Eigen::Matrix<T, 3, 1> p_c;
-    PoseTransformPoint(T_c_w, p_w, p_c.data());
+    PoseInverseTransformPoint(T_w_c, p_w, p_c.data());
     Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
     r =
         sqrt_information_.cast<T>() * (p_c - p_c_measured_.cast<T>());

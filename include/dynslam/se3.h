@@ -82,6 +82,17 @@ void PoseTransformPoint(const T* pose, const T* p, T* out) {
   out[2] = result.z();
 }
 
+// out = Rᵀ·(p − t): a world point seen in the pose's frame (pose⁻¹ · p). `out` may alias `p`.
+template <typename T>
+void PoseInverseTransformPoint(const T* pose, const T* p, T* out) {
+  using namespace se3_internal;
+  const Vector3<T> result =
+      Rotation(pose).conjugate() * (Vector3<T>(p[0], p[1], p[2]) - Translation(pose));
+  out[0] = result.x();
+  out[1] = result.y();
+  out[2] = result.z();
+}
+
 // pose = Exp(ξ), ξ = [ω; ρ].
 template <typename T>
 void SE3Exp(const T* xi, T* pose) {
