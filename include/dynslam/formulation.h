@@ -1,0 +1,56 @@
+// Front-end file → world-centric or object-centric graph (SPEC §3; paper Figs. 2 and 3).
+//
+// Every formulation built from one front-end file sees identical data: the same cameras,
+// measurements, tracklets, object segments and initial values. What is dropped (tracklets of
+// length one, segments shorter than min_object_frames, their points, motions and edges) is
+// dropped from all formulations and reported. Graph layer: no Ceres.
+#ifndef DYNSLAM_FORMULATION_H_
+#define DYNSLAM_FORMULATION_H_
+
+#include <string>
+#include <vector>
+
+#include "dynslam/graph.h"
+#include "dynslam/ground_truth.h"
+#include "dynslam/status.h"
+
+namespace dynslam {
+
+enum class Formulation { kWorldCentric, kObjectCentricA, kObjectCentricB, kObjectCentricC };
+inline constexpr Formulation kAllFormulations[] = {
+    Formulation::kWorldCentric, Formulation::kObjectCentricA, Formulation::kObjectCentricB,
+    Formulation::kObjectCentricC};
+
+const char* FormulationName(Formulation formulation);  // "wc", "oc_a", "oc_b", "oc_c"
+bool ParseFormulation(const std::string& text, Formulation* formulation);
+
+enum class ObjectInit { kAlign, kCentroid };   // SPEC §3.3
+enum class MotionInit { kFrontEnd, kIdentity };
+
+// SPEC §3.5.
+struct BuildOptions {
+  int min_object_frames = 5;
+  ObjectInit object_init = ObjectInit::kAlign;
+  MotionInit motion_init = MotionInit::kFrontEnd;
+  double kinematic_sigma = 0.01;  // information 1/σ² on all six components
+  // Prior on the first pose of each segment, as variances (information = 1 / variance).
+  double object_prior_rotation_variance = 0.2;     // rad²
+  double object_prior_translation_variance = 0.4;  // m²
+};
+
+struct BuildReport {
+  std::vector<std::string> lines;  // "front-end …", "dropped: …", "kept: …", counts
+  std::vector<std::string> warnings;
+  std::string ToText() const;
+};
+
+// `front_end` must have roles assigned (ReadGraph does). `ground_truth` may be null (then the
+// first pose of each segment is initialised from its points, SPEC §3.3). `name` is used in the
+// report's first line.
+Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation,
+                                 const BuildOptions& options, const GroundTruth* ground_truth,
+                                 BuildReport* report, const std::string& name = "front-end");
+
+}  // namespace dynslam
+
+#endif  // DYNSLAM_FORMULATION_H_

@@ -1,0 +1,561 @@
+#include "dynslam/formulation.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include <Eigen/SVD>
+
+namespace dynslam {
+namespace {
+
+// Pose algebra on doubles without Ceres (the graph layer stays Ceres-free).
+Pose Multiply(const Pose& a, const Pose& b) {
+  return Pose::FromRotationTranslation(a.rotation() * b.rotation(),
+                                       a.rotation() * b.translation() + a.translation());
+}
+Pose Invert(const Pose& pose) {
+  const Eigen::Quaterniond q_inv = pose.rotation().conjugate();
+  return Pose::FromRotationTranslation(q_inv, -(q_inv * pose.translation()));
+}
+Eigen::Vector3d Apply(const Pose& pose, const Eigen::Vector3d& p) {
+  return pose.rotation() * p + pose.translation();
+}
+
+// A maximal chain of dynamic points linked by motion edges (SPEC §3.1), or one static point.
+struct Tracklet {
+  bool dynamic = false;
+  int64_t object = -1;
+  int64_t id = -1;                          // tracklet id (labels or SPEC §3.1 numbering)
+  std::vector<VertexId> points;             // in time order
+  std::vector<const MotionEdge*> edges;     // edges[i] joins points[i] and points[i + 1]
+  VertexId object_point = -1;               // object-centric m_L, once assigned
+};
+
+// A maximal run of frames k0..k1 of one object joined by motion edges (SPEC §3.1).
+struct Segment {
+  int64_t object = 0;
+  int64_t first = 0;  // k0
+  int64_t last = 0;   // k1
+  bool kept = false;
+  std::vector<Tracklet*> tracklets;
+  int64_t frames() const { return last - first + 1; }
+};
+
+std::string Count(int64_t n, const char* what) { return std::to_string(n) + " " + what; }
+
+class Builder {
+ public:
+  Builder(const Graph& front_end, const BuildOptions& options, const GroundTruth* gt,
+          BuildReport* report, const std::string& name)
+      : fe_(front_end), options_(options), gt_(gt), report_(report), name_(name) {}
+
+  Status Analyse();
+  Expected<Graph> Build(Formulation formulation);
+
+ private:
+  Error Fail(int64_t line, const std::string& message) const { return Error{name_, line, message}; }
+  void Say(const std::string& line) {
+    if (report_ != nullptr) report_->lines.push_back(line);
+  }
+  Status FindTracklets();
+  Status FindSegments();
+  void ReportDrops();
+
+  bool Kept(const Tracklet& t) const {
+    return t.dynamic && t.points.size() > 1 && segment_of_.at(&t)->kept;
+  }
+  Pose MotionValue(VertexId id) const {
+    return options_.motion_init == MotionInit::kIdentity ? Pose::Identity()
+                                                         : fe_.Find(id)->pose();
+  }
+  // Object poses and object-frame points of one kept segment (SPEC §3.3), into `out`.
+  void InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out);
+  void AddVertex(Graph& out, VertexId id, const Label& label) const {
+    Vertex vertex = *fe_.Find(id);
+    vertex.label = label;
+    vertex.line = 0;
+    out.vertices.emplace(id, vertex);
+  }
+
+  const Graph& fe_;
+  const BuildOptions& options_;
+  const GroundTruth* gt_;
+  BuildReport* report_;
+  std::string name_;
+
+  std::map<int64_t, VertexId> camera_of_frame_;
+  std::unordered_map<VertexId, const PointEdge*> dynamic_observation_;
+  std::vector<Tracklet> tracklets_;  // static and dynamic, sorted by first point id
+  std::unordered_map<VertexId, Tracklet*> tracklet_of_point_;
+  std::map<std::pair<int64_t, int64_t>, VertexId> motion_at_;  // (object, frame) → motion
+  std::vector<Segment> segments_;                                // by object, then time
+  std::unordered_map<const Tracklet*, Segment*> segment_of_;
+  std::set<VertexId> kept_motions_;
+  std::map<const Segment*, std::map<int64_t, VertexId>> segment_pose_ids_;  // frame → L_k id
+  int initialised_from_gt_ = 0;
+};
+
+Status Builder::FindTracklets() {
+  std::unordered_map<VertexId, const MotionEdge*> next, previous;
+  for (const MotionEdge& e : fe_.motion_edges) {
+    next[e.prev] = &e;
+    previous[e.curr] = &e;
+  }
+  for (const PointEdge& e : fe_.point_edges) {
+    if (!e.is_dynamic) continue;
+    if (auto [it, inserted] = dynamic_observation_.emplace(e.point, &e); !inserted) {
+      return Fail(e.line, "dynamic point " + std::to_string(e.point) +
+                              " is observed twice (also on line " +
+                              std::to_string(it->second->line) +
+                              "); each dynamic point is observed by exactly one camera (SPEC §3.1)");
+    }
+  }
+  for (const auto& [id, vertex] : fe_.vertices) {
+    if (vertex.label.role == Role::kStaticPoint) {
+      Tracklet t;
+      t.points.push_back(id);
+      t.id = vertex.label.tracklet;
+      tracklets_.push_back(t);
+    } else if (vertex.label.role == Role::kDynamicPoint) {
+      if (dynamic_observation_.count(id) == 0) {
+        return Fail(vertex.line, "dynamic point " + std::to_string(id) +
+                                     " has no EDGE_SE3_TRACKXYZ observing it");
+      }
+      if (previous.count(id) > 0) continue;  // not the head of its chain
+      Tracklet t;
+      t.dynamic = true;
+      t.object = vertex.label.object;
+      t.id = vertex.label.tracklet;
+      for (VertexId p = id;;) {
+        t.points.push_back(p);
+        auto it = next.find(p);
+        if (it == next.end()) break;
+        t.edges.push_back(it->second);
+        t.object = it->second->object;
+        p = it->second->curr;
+      }
+      tracklets_.push_back(t);
+    }
+  }
+  size_t chained = 0;
+  for (const Tracklet& t : tracklets_) chained += t.dynamic ? t.points.size() : 0;
+  if (chained != dynamic_observation_.size()) {
+    return Fail(0, "motion edges form a cycle among dynamic points (a tracklet must have a start)");
+  }
+  // Ids: from labels, else one sequence over all tracklets by first point id (SPEC §3.1).
+  std::sort(tracklets_.begin(), tracklets_.end(),
+            [](const Tracklet& a, const Tracklet& b) { return a.points[0] < b.points[0]; });
+  if (!fe_.labelled) {
+    for (size_t i = 0; i < tracklets_.size(); ++i) tracklets_[i].id = static_cast<int64_t>(i);
+  }
+  for (Tracklet& t : tracklets_) {
+    for (const VertexId p : t.points) tracklet_of_point_[p] = &t;
+  }
+  return Status::Ok();
+}
+
+Status Builder::FindSegments() {
+  for (const auto& [id, vertex] : fe_.vertices) {
+    const Label& label = vertex.label;
+    if (label.role == Role::kCamera) {
+      if (auto [it, inserted] = camera_of_frame_.emplace(label.frame, id); !inserted) {
+        return Fail(vertex.line, "cameras " + std::to_string(it->second) + " and " +
+                                     std::to_string(id) + " are both at frame " +
+                                     std::to_string(label.frame));
+      }
+    } else if (label.role == Role::kMotion) {
+      if (auto [it, inserted] = motion_at_.emplace(std::pair{label.object, label.frame}, id);
+          !inserted) {
+        return Fail(vertex.line, "object " + std::to_string(label.object) +
+                                     " has two motions at frame " + std::to_string(label.frame) +
+                                     " (vertices " + std::to_string(it->second) + " and " +
+                                     std::to_string(id) + ", SPEC §3.1)");
+      }
+    }
+  }
+  std::map<int64_t, std::set<int64_t>> joined_frames;  // object → frames k with an edge (k−1, k)
+  for (const MotionEdge& e : fe_.motion_edges) {
+    const Label& motion = fe_.Find(e.motion)->label;
+    if (motion.object != e.object || motion.frame != e.frame) {
+      return Fail(e.line, "EDGE_SE3_MOTION of object " + std::to_string(e.object) + " at frame " +
+                              std::to_string(e.frame) + " uses motion " +
+                              std::to_string(e.motion) + " of object " +
+                              std::to_string(motion.object) + " at frame " +
+                              std::to_string(motion.frame));
+    }
+    joined_frames[e.object].insert(e.frame);
+  }
+  for (const auto& [object, frames] : joined_frames) {
+    for (auto it = frames.begin(); it != frames.end();) {
+      Segment segment;
+      segment.object = object;
+      segment.first = *it - 1;
+      int64_t last = *it;
+      while (++it != frames.end() && *it == last + 1) last = *it;
+      segment.last = last;
+      segment.kept = segment.frames() >= options_.min_object_frames;
+      segments_.push_back(segment);
+    }
+  }
+  for (Tracklet& t : tracklets_) {
+    if (!t.dynamic || t.points.size() < 2) continue;
+    const int64_t first_frame = fe_.Find(t.points[0])->label.frame;
+    for (Segment& s : segments_) {
+      if (s.object == t.object && s.first <= first_frame && first_frame <= s.last) {
+        s.tracklets.push_back(&t);
+        segment_of_[&t] = &s;
+      }
+    }
+  }
+  for (const Segment& s : segments_) {
+    if (!s.kept) continue;
+    for (int64_t k = s.first + 1; k <= s.last; ++k) kept_motions_.insert(motion_at_.at({s.object, k}));
+  }
+  return Status::Ok();
+}
+
+void Builder::ReportDrops() {
+  std::set<int64_t> objects;
+  int64_t dynamic_points = 0, dynamic_tracklets = 0, statics = 0, length_one = 0, kept_segments = 0;
+  for (const Tracklet& t : tracklets_) {
+    if (!t.dynamic) {
+      ++statics;
+      continue;
+    }
+    ++dynamic_tracklets;
+    dynamic_points += static_cast<int64_t>(t.points.size());
+    length_one += t.points.size() == 1;
+    objects.insert(t.object);
+  }
+  for (const Segment& s : segments_) kept_segments += s.kept;
+  Say("front-end " + name_ + (fe_.labelled ? " (labelled): " : " (unlabelled): ") +
+      Count(static_cast<int64_t>(camera_of_frame_.size()), "cameras") + ", " +
+      Count(statics, "static points") + ", " + Count(dynamic_points, "dynamic points in ") +
+      Count(dynamic_tracklets, "tracklets") + ", " +
+      Count(static_cast<int64_t>(motion_at_.size()), "motions") + ", " +
+      Count(static_cast<int64_t>(objects.size()), "objects") + ", " +
+      Count(kept_segments, "segments kept"));
+  if (length_one > 0) {
+    Say("dropped: " + Count(length_one, "tracklets of length one") + " (" +
+        Count(length_one, "points") + ", " + Count(length_one, "point edges") +
+        "): in no motion edge");
+  }
+  for (const Segment& s : segments_) {
+    if (s.kept) continue;
+    int64_t points = 0, edges = 0;
+    for (const Tracklet* t : s.tracklets) {
+      points += static_cast<int64_t>(t->points.size());
+      edges += static_cast<int64_t>(t->edges.size());
+    }
+    int64_t smoothing = 0;
+    for (const BetweenEdge& e : fe_.betweens) {
+      const Label& a = fe_.Find(e.from)->label;
+      smoothing += a.role == Role::kMotion && a.object == s.object && a.frame > s.first &&
+                   a.frame <= s.last;
+    }
+    Say("dropped: object " + std::to_string(s.object) + " frames " + std::to_string(s.first) +
+        ".." + std::to_string(s.last) + " (" + Count(s.frames(), "frames") + ") < " +
+        std::to_string(options_.min_object_frames) + ": " +
+        Count(static_cast<int64_t>(s.tracklets.size()), "tracklets") + ", " +
+        Count(points, "points") + ", " + Count(s.last - s.first, "motions") + ", " +
+        Count(points, "point edges") + ", " + Count(edges, "motion edges") + ", " +
+        Count(smoothing, "smoothing edges"));
+  }
+  int64_t dropped_motions = 0;
+  for (const auto& [key, id] : motion_at_) dropped_motions += kept_motions_.count(id) == 0;
+  int64_t dropped_smoothing = 0;
+  for (const BetweenEdge& e : fe_.betweens) {
+    if (fe_.Find(e.from)->label.role != Role::kMotion) continue;
+    dropped_smoothing += kept_motions_.count(e.from) == 0 || kept_motions_.count(e.to) == 0;
+  }
+  if (dropped_smoothing > 0) {
+    Say("dropped: " + Count(dropped_smoothing, "smoothing edges") +
+        " in all (one of their motions is dropped)");
+  }
+  for (const Segment& s : segments_) {
+    if (!s.kept) continue;
+    Say("kept: object " + std::to_string(s.object) + " frames " + std::to_string(s.first) + ".." +
+        std::to_string(s.last) + " (" + Count(s.frames(), "frames") + "), " +
+        Count(static_cast<int64_t>(s.tracklets.size()), "tracklets"));
+  }
+}
+
+Status Builder::Analyse() {
+  if (Status s = FindTracklets(); !s.ok()) return s;
+  if (Status s = FindSegments(); !s.ok()) return s;
+  ReportDrops();
+  return Status::Ok();
+}
+
+// The least-squares rigid transform (Kabsch, with the determinant fix) mapping `from` onto
+// `to`; false when fewer than 3 pairs or the second singular value is below 1e-9 × the first.
+bool Align(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to,
+           Pose* pose) {
+  if (from.size() < 3) return false;
+  Eigen::Vector3d from_mean = Eigen::Vector3d::Zero(), to_mean = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < from.size(); ++i) {
+    from_mean += from[i];
+    to_mean += to[i];
+  }
+  from_mean /= static_cast<double>(from.size());
+  to_mean /= static_cast<double>(to.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < from.size(); ++i) {
+    covariance += (from[i] - from_mean) * (to[i] - to_mean).transpose();
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector3d singular = svd.singularValues();
+  if (!(singular[1] >= 1e-9 * singular[0]) || singular[0] == 0) return false;
+  Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+  fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+  const Eigen::Matrix3d rotation = svd.matrixV() * fix * svd.matrixU().transpose();
+  *pose = Pose::FromRotationTranslation(Eigen::Quaterniond(rotation).normalized(),
+                                        to_mean - rotation * from_mean);
+  return true;
+}
+
+void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out) {
+  const int64_t j = segment.object;
+  // Dynamic points of this segment by frame: (tracklet, world point at that frame).
+  std::map<int64_t, std::vector<std::pair<Tracklet*, VertexId>>> observed;
+  for (Tracklet* t : segment.tracklets) {
+    for (const VertexId p : t->points) observed[fe_.Find(p)->label.frame].emplace_back(t, p);
+  }
+  auto centroid = [&](int64_t k) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& [t, p] : observed[k]) sum += fe_.Find(p)->point();
+    return Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(),
+                                         sum / static_cast<double>(observed[k].size()));
+  };
+  std::map<int64_t, Pose> poses;
+  std::map<const Tracklet*, Eigen::Vector3d> object_points;
+  for (int64_t k = segment.first; k <= segment.last; ++k) {
+    Pose pose;
+    if (options_.object_init == ObjectInit::kCentroid) {
+      pose = centroid(k);
+    } else if (k == segment.first) {
+      const Pose* x_gt = gt_ != nullptr ? gt_->Camera(k) : nullptr;
+      const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
+      auto camera = camera_of_frame_.find(k);
+      if (x_gt != nullptr && l_gt != nullptr && camera != camera_of_frame_.end()) {
+        // The true object pose seen from its camera, placed in the drifted initial world.
+        pose = Multiply(Multiply(fe_.Find(camera->second)->pose(), Invert(*x_gt)), *l_gt);
+        ++initialised_from_gt_;
+      } else {
+        pose = centroid(k);
+      }
+    } else {
+      std::vector<Eigen::Vector3d> from, to;
+      for (const auto& [t, p] : observed[k]) {
+        auto m = object_points.find(t);
+        if (m == object_points.end()) continue;  // begins at k
+        from.push_back(m->second);
+        to.push_back(fe_.Find(p)->point());
+      }
+      if (!Align(from, to, &pose)) {
+        pose = Multiply(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
+      }
+    }
+    poses[k] = pose;
+    for (const auto& [t, p] : observed[k]) {
+      if (t->points.front() == p) object_points[t] = Apply(Invert(pose), fe_.Find(p)->point());
+    }
+  }
+  // Ids in the order of SPEC §3.4: poses by frame, then points by first front-end point id.
+  std::map<int64_t, VertexId> pose_ids;
+  for (const auto& [k, pose] : poses) {
+    Vertex vertex;
+    vertex.type = VertexType::kPose;
+    vertex.set_pose(pose);
+    vertex.label = Label{Role::kObjectPose, j, k, -1};
+    pose_ids[k] = *next_id;
+    out.vertices.emplace((*next_id)++, vertex);
+  }
+  std::vector<Tracklet*> ordered = segment.tracklets;
+  std::sort(ordered.begin(), ordered.end(),
+            [](const Tracklet* a, const Tracklet* b) { return a->points[0] < b->points[0]; });
+  for (Tracklet* t : ordered) {
+    Vertex vertex;
+    vertex.type = VertexType::kPoint;
+    vertex.value.fill(0);
+    vertex.point() = object_points.at(t);
+    vertex.label = Label{Role::kObjectPoint, j, -1, t->id};
+    t->object_point = *next_id;
+    out.vertices.emplace((*next_id)++, vertex);
+  }
+  // Prior on the first pose at its initial value (SPEC §3.3), information in [ω; ρ] order.
+  PriorEdge prior;
+  prior.pose = pose_ids.at(segment.first);
+  prior.measurement = poses.at(segment.first);
+  prior.information.setZero();
+  prior.information.diagonal() << Eigen::Vector3d::Constant(
+      1.0 / options_.object_prior_rotation_variance),
+      Eigen::Vector3d::Constant(1.0 / options_.object_prior_translation_variance);
+  out.priors.push_back(prior);
+  segment_pose_ids_[&segment] = pose_ids;
+}
+
+Expected<Graph> Builder::Build(Formulation formulation) {
+  const bool world_centric = formulation == Formulation::kWorldCentric;
+  Graph out;
+  out.formulation = FormulationName(formulation);
+  out.labelled = true;
+
+  // Shared by every formulation: cameras, static points, prior, odometry, static measurements,
+  // kept motions and the smoothing edges between them (SPEC §3.2, §3.3).
+  for (const auto& [frame, id] : camera_of_frame_) AddVertex(out, id, fe_.Find(id)->label);
+  for (const Tracklet& t : tracklets_) {
+    if (!t.dynamic) AddVertex(out, t.points[0], Label{Role::kStaticPoint, -1, -1, t.id});
+  }
+  for (const VertexId id : kept_motions_) {
+    AddVertex(out, id, fe_.Find(id)->label);
+    out.vertices.at(id).set_pose(MotionValue(id));
+  }
+  for (const PriorEdge& e : fe_.priors) out.priors.push_back(e);
+  for (const BetweenEdge& e : fe_.betweens) {
+    const bool odometry = fe_.Find(e.from)->label.role == Role::kCamera;
+    if (odometry || (kept_motions_.count(e.from) > 0 && kept_motions_.count(e.to) > 0)) {
+      out.betweens.push_back(e);
+    }
+  }
+  for (const PointEdge& e : fe_.point_edges) {
+    if (!e.is_dynamic) out.point_edges.push_back(e);
+  }
+
+  if (world_centric) {
+    for (const Tracklet& t : tracklets_) {
+      if (!Kept(t)) continue;
+      for (const VertexId p : t.points) {
+        Label label = fe_.Find(p)->label;
+        label.tracklet = t.id;
+        AddVertex(out, p, label);
+        out.point_edges.push_back(*dynamic_observation_.at(p));
+      }
+      for (const MotionEdge* e : t.edges) out.motion_edges.push_back(*e);
+    }
+  } else {
+    VertexId next_id = fe_.vertices.empty() ? 0 : fe_.vertices.rbegin()->first + 1;
+    for (Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
+      if (segment.kept) InitialiseSegment(segment, &next_id, out);
+    }
+    Matrix6d kinematic_information =
+        Matrix6d::Identity() / (options_.kinematic_sigma * options_.kinematic_sigma);
+    for (Segment& segment : segments_) {
+      if (!segment.kept) continue;
+      const std::map<int64_t, VertexId>& pose_ids = segment_pose_ids_.at(&segment);
+      for (const Tracklet* t : segment.tracklets) {
+        for (const VertexId p : t->points) {
+          const PointEdge& observation = *dynamic_observation_.at(p);
+          ObjectPointEdge e;
+          e.camera = observation.pose;
+          e.object_pose = pose_ids.at(fe_.Find(p)->label.frame);
+          e.point = t->object_point;
+          e.measurement = observation.measurement;
+          e.information = observation.information;
+          out.object_point_edges.push_back(e);
+        }
+        if (formulation == Formulation::kObjectCentricC) continue;
+        for (const MotionEdge* m : t->edges) {
+          if (!m->measurement.isZero() && report_ != nullptr) {
+            report_->warnings.push_back(
+                name_ + ":" + std::to_string(m->line) +
+                ": EDGE_SE3_MOTION has a non-zero measurement, which EDGE_SE3_OBJ_MOTION has no "
+                "field for (SPEC §3.3)");
+          }
+          ObjectMotionEdge e;
+          e.pose_prev = pose_ids.at(m->frame - 1);
+          e.pose_curr = pose_ids.at(m->frame);
+          e.motion = m->motion;
+          e.point = t->object_point;
+          e.information = m->information;
+          out.object_motion_edges.push_back(e);
+        }
+      }
+      if (formulation == Formulation::kObjectCentricA) continue;
+      for (int64_t k = segment.first + 1; k <= segment.last; ++k) {
+        KinematicEdge e;
+        e.pose_prev = pose_ids.at(k - 1);
+        e.pose_curr = pose_ids.at(k);
+        e.motion = motion_at_.at({segment.object, k});
+        e.information = kinematic_information;
+        out.kinematic_edges.push_back(e);
+      }
+    }
+    int64_t poses = 0;
+    for (const auto& [segment, ids] : segment_pose_ids_) poses += static_cast<int64_t>(ids.size());
+    Say("object poses: " + std::to_string(poses) + ", " + std::to_string(initialised_from_gt_) +
+        " initialised from ground truth (--object-init " +
+        (options_.object_init == ObjectInit::kAlign ? "align" : "centroid") + ")");
+  }
+  // The built graph must read back as a consistent labelled file (SPEC §1.4).
+  if (Status s = AssignRoles(out, name_); !s.ok()) return s.error();
+
+  std::string variables, edges;
+  int64_t total_variables = 0, total_edges = 0;
+  for (const Role role : kAllRoles) {
+    int64_t n = 0;
+    for (const auto& [id, vertex] : out.vertices) n += vertex.label.role == role;
+    if (n > 0) variables += std::string(variables.empty() ? "" : ", ") + RoleName(role) + " " + std::to_string(n);
+    total_variables += n;
+  }
+  const auto counts = CountEdgesByKind(out);
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    const int64_t n = counts[static_cast<int>(kind)];
+    if (n > 0) edges += std::string(edges.empty() ? "" : ", ") + EdgeKindName(kind) + " " + std::to_string(n);
+    total_edges += n;
+  }
+  Say(std::string(FormulationName(formulation)) + ": " + std::to_string(total_variables) +
+      " variables (" + variables + ")");
+  Say(std::string(FormulationName(formulation)) + ": " + std::to_string(total_edges) + " edges (" +
+      edges + ")");
+  return out;
+}
+
+}  // namespace
+
+const char* FormulationName(Formulation formulation) {
+  switch (formulation) {
+    case Formulation::kWorldCentric: return "wc";
+    case Formulation::kObjectCentricA: return "oc_a";
+    case Formulation::kObjectCentricB: return "oc_b";
+    case Formulation::kObjectCentricC: return "oc_c";
+  }
+  return "?";
+}
+
+bool ParseFormulation(const std::string& text, Formulation* formulation) {
+  for (const Formulation f : kAllFormulations) {
+    if (text == FormulationName(f)) {
+      *formulation = f;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string BuildReport::ToText() const {
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  for (const std::string& warning : warnings) text += "warning: " + warning + "\n";
+  return text;
+}
+
+Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation,
+                                 const BuildOptions& options, const GroundTruth* ground_truth,
+                                 BuildReport* report, const std::string& name) {
+  if (options.min_object_frames < 2) {
+    return Error{"", 0, "min_object_frames must be at least 2 (a segment needs one motion)"};
+  }
+  if (!(options.kinematic_sigma > 0) || !(options.object_prior_rotation_variance > 0) ||
+      !(options.object_prior_translation_variance > 0)) {
+    return Error{"", 0, "kinematic sigma and object prior variances must be positive"};
+  }
+  Builder builder(front_end, options, ground_truth, report, name);
+  if (Status s = builder.Analyse(); !s.ok()) return s.error();
+  return builder.Build(formulation);
+}
+
+}  // namespace dynslam
