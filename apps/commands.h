@@ -4,6 +4,8 @@
 
 namespace dynslam::cli {
 
+int RunBuild(int argc, char** argv);
+int RunCompare(int argc, char** argv);
 int RunSolve(int argc, char** argv);
 int RunVerify(int argc, char** argv);
 

@@ -14,6 +14,10 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
+    {"build", "build one formulation (wc, oc_a, oc_b, oc_c) from a front-end file",
+     dynslam::cli::RunBuild},
+    {"compare", "build, solve and score every formulation; print the paper's Tables I-III",
+     dynslam::cli::RunCompare},
     {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},
     {"verify", "compare a solve's outputs with a reference solve (GTSAM)", dynslam::cli::RunVerify},
 };
