@@ -228,7 +228,7 @@ void Builder::ReportDrops() {
     ++dynamic_tracklets;
     dynamic_points += static_cast<int64_t>(t.points.size());
     length_one += t.points.size() == 1;
-    objects.insert(t.object);
+    if (t.object >= 0) objects.insert(t.object);  // unknown for an unlabelled length-one point
   }
   for (const Segment& s : segments_) kept_segments += s.kept;
   Say("front-end " + name_ + (fe_.labelled ? " (labelled): " : " (unlabelled): ") +

@@ -131,3 +131,135 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FormulationReferenceTest);
 
 }  // namespace
 }  // namespace dynslam
+
+namespace dynslam {
+namespace {
+
+// A released-code front-end file without labels: cameras 0–6 (frames 0–6 by id), static point
+// 10, object 9 with tracklets A (20–22) and B (23–25) at frames 0–2, then every track breaks:
+// C (30–33) and D (34–37) at frames 3–6; a dynamic point in no motion edge (40, frame 5).
+// Motions 50, 51 (frames 1, 2) and 53–55 (frames 4–6); smoothing 50–51, 53–54, 54–55.
+std::string UnlabelledFrontEnd() {
+  const std::string i21 = " 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1";
+  const std::string i6 = " 1 0 0 1 0 1";
+  std::ostringstream f;
+  for (int k = 0; k <= 6; ++k) f << "VERTEX_SE3:QUAT " << k << " " << k << " 0 0 0 0 0 1\n";
+  f << "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1" << i21 << "\n";
+  for (int k = 1; k <= 6; ++k) f << "EDGE_SE3:QUAT " << k - 1 << " " << k << " 1 0 0 0 0 0 1" << i21 << "\n";
+  f << "VERTEX_TRACKXYZ 10 0 5 20\nEDGE_SE3_TRACKXYZ 0 10 0 5 20" << i6 << " 0\n"
+    << "EDGE_SE3_TRACKXYZ 1 10 -1 5 20" << i6 << " 0\n";
+  auto tracklet = [&](int first_id, int first_frame, int length, double x) {
+    for (int i = 0; i < length; ++i) {
+      const int id = first_id + i, k = first_frame + i;
+      f << "VERTEX_TRACKXYZ " << id << " " << x + k << " 1 10\n"
+        << "EDGE_SE3_TRACKXYZ " << k << " " << id << " " << x << " 1 10" << i6 << " 1\n";
+      if (i > 0) {
+        const int motion = 49 + k;  // 50, 51 and 53, 54, 55
+        f << "EDGE_SE3_MOTION " << id - 1 << " " << id << " " << motion << " 0 0 0" << i6
+          << " 9 " << k << " " << k << "\n";
+      }
+    }
+  };
+  tracklet(20, 0, 3, 0.0);
+  tracklet(23, 0, 3, 0.5);
+  tracklet(30, 3, 4, 0.0);
+  tracklet(34, 3, 4, 0.5);
+  f << "VERTEX_TRACKXYZ 40 3 1 10\nEDGE_SE3_TRACKXYZ 5 40 -2 1 10" << i6 << " 1\n";
+  for (const int m : {50, 51, 53, 54, 55}) f << "VERTEX_SE3:QUAT " << m << " 1 0 0 0 0 0 1\n";
+  for (const auto& [a, b] : {std::pair{50, 51}, std::pair{53, 54}, std::pair{54, 55}}) {
+    f << "EDGE_SE3:QUAT " << a << " " << b << " 0 0 0 0 0 0 1" << i21 << "\n";
+  }
+  return f.str();
+}
+
+Graph ReadText(const std::string& text) {
+  std::istringstream in(text);
+  Expected<Graph> graph = ReadGraph(in, "frontend.g2o");
+  EXPECT_TRUE(graph.ok()) << graph.error().ToString();
+  return graph.ok() ? std::move(graph).value() : Graph{};
+}
+
+std::array<int64_t, kAllRoles.size()> Roles(const Graph& g) {
+  std::array<int64_t, kAllRoles.size()> counts{};
+  for (const auto& [id, vertex] : g.vertices) {
+    for (size_t r = 0; r < kAllRoles.size(); ++r) counts[r] += vertex.label.role == kAllRoles[r];
+  }
+  return counts;
+}
+
+TEST(FormulationEdgeCaseTest, UnlabelledFileTwoSegmentsAndATrackletOfLengthOne) {
+  const Graph front_end = ReadText(UnlabelledFrontEnd());
+  BuildOptions options;
+  options.min_object_frames = 3;
+  BuildReport report;
+  Expected<Graph> wc = BuildFormulation(front_end, Formulation::kWorldCentric, options, nullptr,
+                                        &report, "frontend.g2o");
+  ASSERT_TRUE(wc.ok()) << wc.error().ToString();
+  EXPECT_EQ(report.lines[0],
+            "front-end frontend.g2o (unlabelled): 7 cameras, 1 static points, 15 dynamic points in "
+            "5 tracklets, 5 motions, 1 objects, 2 segments kept");
+  EXPECT_EQ(report.lines[1],
+            "dropped: 1 tracklets of length one (1 points, 1 point edges): in no motion edge");
+  EXPECT_EQ(report.lines[2], "kept: object 9 frames 0..2 (3 frames), 2 tracklets");
+  EXPECT_EQ(report.lines[3], "kept: object 9 frames 3..6 (4 frames), 2 tracklets");
+  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 6>{7, 1, 14, 5, 0, 0}));
+  const auto edges = CountEdgesByKind(*wc);
+  EXPECT_EQ(edges, (std::array<int64_t, kNumEdgeKinds>{1, 6, 3, 2, 14, 10, 0, 0, 0, 0}));
+  // Tracklet ids: one sequence by first point id over static and dynamic tracklets (SPEC §3.1):
+  // 10 → 0, A → 1, B → 2, C → 3, D → 4 (the length-one tracklet of 40 would be 5).
+  EXPECT_EQ(wc->Find(10)->label.tracklet, 0);
+  EXPECT_EQ(wc->Find(22)->label.tracklet, 1);
+  EXPECT_EQ(wc->Find(37)->label.tracklet, 4);
+  EXPECT_EQ(wc->Find(33)->label.frame, 6);
+  EXPECT_EQ(wc->Find(40), nullptr);
+
+  Expected<Graph> oc_b = BuildFormulation(front_end, Formulation::kObjectCentricB, options, nullptr,
+                                          nullptr);
+  ASSERT_TRUE(oc_b.ok()) << oc_b.error().ToString();
+  EXPECT_EQ(Roles(*oc_b), (std::array<int64_t, 6>{7, 1, 0, 5, 7, 4}));
+  // New ids from max_id + 1 = 56: poses of the first segment, its points, then the second's.
+  EXPECT_EQ(oc_b->Find(56)->label.role, Role::kObjectPose);
+  EXPECT_EQ(oc_b->Find(58)->label.frame, 2);
+  EXPECT_EQ(oc_b->Find(59)->label.role, Role::kObjectPoint);
+  EXPECT_EQ(oc_b->Find(59)->label.tracklet, 1);
+  EXPECT_EQ(oc_b->Find(61)->label.frame, 3);
+  EXPECT_EQ(oc_b->Find(66)->label.tracklet, 4);
+  EXPECT_EQ(CountEdgesByKind(*oc_b),
+            (std::array<int64_t, kNumEdgeKinds>{1, 6, 3, 2, 0, 0, 14, 10, 5, 2}));
+}
+
+TEST(FormulationEdgeCaseTest, SegmentsShorterThanMinObjectFramesAreDroppedEverywhere) {
+  const Graph front_end = ReadText(UnlabelledFrontEnd());
+  BuildReport report;
+  Expected<Graph> wc = BuildFormulation(front_end, Formulation::kWorldCentric, BuildOptions{},
+                                        nullptr, &report, "frontend.g2o");
+  ASSERT_TRUE(wc.ok()) << wc.error().ToString();
+  EXPECT_EQ(report.lines[2],
+            "dropped: object 9 frames 0..2 (3 frames) < 5: 2 tracklets, 6 points, 2 motions, 6 "
+            "point edges, 4 motion edges, 1 smoothing edges");
+  EXPECT_EQ(report.lines[3],
+            "dropped: object 9 frames 3..6 (4 frames) < 5: 2 tracklets, 8 points, 3 motions, 8 "
+            "point edges, 6 motion edges, 2 smoothing edges");
+  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 6>{7, 1, 0, 0, 0, 0}));
+  Expected<Graph> oc_c = BuildFormulation(front_end, Formulation::kObjectCentricC, BuildOptions{},
+                                          nullptr, nullptr);
+  ASSERT_TRUE(oc_c.ok());
+  EXPECT_EQ(Roles(*oc_c), (std::array<int64_t, 6>{7, 1, 0, 0, 0, 0}));
+}
+
+TEST(FormulationEdgeCaseTest, TwoMotionsOfOneObjectAtOneFrameIsAnError) {
+  std::string text = UnlabelledFrontEnd();
+  // Tracklet B's second motion edge names motion 56 (a new vertex) instead of 50.
+  text += "VERTEX_SE3:QUAT 56 1 0 0 0 0 0 1\n";
+  const std::string edge = "EDGE_SE3_MOTION 23 24 50";
+  text.replace(text.find(edge), edge.size(), "EDGE_SE3_MOTION 23 24 56");
+  const Graph front_end = ReadText(text);
+  Expected<Graph> built = BuildFormulation(front_end, Formulation::kWorldCentric, BuildOptions{},
+                                           nullptr, nullptr, "frontend.g2o");
+  ASSERT_FALSE(built.ok());
+  EXPECT_NE(built.error().message.find("two motions at frame 1"), std::string::npos)
+      << built.error().ToString();
+}
+
+}  // namespace
+}  // namespace dynslam
