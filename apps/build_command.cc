@@ -5,6 +5,7 @@
 
 #include "build_flags.h"
 #include "cli.h"
+#include "compat_flags.h"
 #include "commands.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
@@ -25,17 +26,25 @@ int RunBuild(int argc, char** argv) {
   parser.AddString("gt", &gt_path,
                    "ground truth (SPEC §2): initialises the first object pose of each segment", "GT");
   BuildFlags build_flags(&parser);
+  CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
+  if (std::optional<std::string> problem = compat.Finish()) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
   if (out_path.empty()) {
     std::cerr << "error: --out FILE is required\n";
     return kExitBadInput;
   }
   BuildOptions options;
   build_flags.Finish(&options);
+  compat.Apply(&options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);
 
-  Expected<Graph> front_end = ReadGraph(front_end_path);
+  ReadOptions read_options;
+  compat.Apply(&read_options);
+  Expected<Graph> front_end = ReadGraph(front_end_path, read_options);
   if (!front_end.ok()) {
     std::cerr << "error: " << front_end.error().ToString() << "\n";
     return kExitBadInput;

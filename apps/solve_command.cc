@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cli.h"
+#include "compat_flags.h"
 #include "commands.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
@@ -59,7 +60,12 @@ int RunSolve(int argc, char** argv) {
   parser.AddFlag("skip-unknown-tags", &skip_unknown,
                  "skip lines with tags SPEC §1 does not know (counted and reported)");
   SolverFlags solver_flags(&parser);
+  CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
+  if (std::optional<std::string> problem = compat.Finish()) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
   if (out_dir.empty()) {
     std::cerr << "error: --out DIR is required\n";
     return kExitBadInput;
@@ -73,6 +79,7 @@ int RunSolve(int argc, char** argv) {
 
   ReadOptions read_options;
   read_options.skip_unknown_tags = skip_unknown;
+  compat.Apply(&read_options);
   ReadReport read_report;
   Expected<Graph> graph = ReadGraph(graph_path, read_options, &read_report);
   if (!graph.ok()) {
@@ -94,6 +101,9 @@ int RunSolve(int argc, char** argv) {
     outputs.warnings.push_back("skipped " + std::to_string(count) + " lines with unknown tag " + tag);
   }
 
+  std::string source;
+  compat.Apply(FormulationOf(*graph, &source) == "wc", &options);
+  if (compat.any()) outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7)");
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();

@@ -340,7 +340,10 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
       const Pose* x_gt = gt_ != nullptr ? gt_->Camera(k) : nullptr;
       const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
       auto camera = camera_of_frame_.find(k);
-      if (x_gt != nullptr && l_gt != nullptr && camera != camera_of_frame_.end()) {
+      if (options_.dsc_object_centric_noise && l_gt != nullptr) {
+        pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), l_gt->translation());
+        ++initialised_from_gt_;
+      } else if (x_gt != nullptr && l_gt != nullptr && camera != camera_of_frame_.end()) {
         // The true object pose seen from its camera, placed in the drifted initial world.
         pose = Multiply(Multiply(fe_.Find(camera->second)->pose(), Invert(*x_gt)), *l_gt);
         ++initialised_from_gt_;
@@ -443,6 +446,18 @@ Expected<Graph> Builder::Build(Formulation formulation) {
     }
     Matrix6d kinematic_information =
         Matrix6d::Identity() / (options_.kinematic_sigma * options_.kinematic_sigma);
+    // SPEC §7 item 5: one information per point-edge kind (the first edge's), σ = 0.2 motions.
+    const PointEdge* first_dynamic = nullptr;
+    for (const PointEdge& e : fe_.point_edges) {
+      if (e.is_dynamic && first_dynamic == nullptr) first_dynamic = &e;
+    }
+    if (options_.dsc_object_centric_noise) {
+      const PointEdge* first_static = nullptr;
+      for (PointEdge& e : out.point_edges) {
+        if (first_static == nullptr) first_static = &e;
+        e.information = first_static->information;
+      }
+    }
     for (Segment& segment : segments_) {
       if (!segment.kept) continue;
       const std::map<int64_t, VertexId>& pose_ids = segment_pose_ids_.at(&segment);
@@ -454,7 +469,8 @@ Expected<Graph> Builder::Build(Formulation formulation) {
           e.object_pose = pose_ids.at(fe_.Find(p)->label.frame);
           e.point = t->object_point;
           e.measurement = observation.measurement;
-          e.information = observation.information;
+          e.information = options_.dsc_object_centric_noise ? first_dynamic->information
+                                                             : observation.information;
           out.object_point_edges.push_back(e);
         }
         if (formulation == Formulation::kObjectCentricC) continue;
@@ -470,7 +486,9 @@ Expected<Graph> Builder::Build(Formulation formulation) {
           e.pose_curr = pose_ids.at(m->frame);
           e.motion = m->motion;
           e.point = t->object_point;
-          e.information = m->information;
+          e.information = options_.dsc_object_centric_noise
+                              ? Eigen::Matrix3d(Eigen::Matrix3d::Identity() / (0.2 * 0.2))
+                              : m->information;
           out.object_motion_edges.push_back(e);
         }
       }

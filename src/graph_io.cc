@@ -78,8 +78,9 @@ const char* kFormulationNames[] = {"frontend", "wc", "oc_a", "oc_b", "oc_c"};
 class LineParser {
  public:
   LineParser(const std::string& file, int64_t line, std::string_view tag,
-             const std::vector<std::string_view>& fields)
-      : file_(file), line_(line), tag_(tag), fields_(fields) {}
+             const std::vector<std::string_view>& fields, bool permute_information)
+      : file_(file), line_(line), tag_(tag), fields_(fields),
+        permute_information_(permute_information) {}
 
   size_t size() const { return fields_.size(); }
 
@@ -174,6 +175,10 @@ class LineParser {
   bool Read6x6InTangentOrder(size_t first, Matrix6d* information, Error* error) const {
     Matrix6d file_order;
     if (!ReadInformation<6>(first, &file_order, error)) return false;
+    if (!permute_information_) {
+      *information = file_order;
+      return true;
+    }
     for (int r = 0; r < 6; ++r) {
       for (int c = 0; c < 6; ++c) (*information)(r, c) = file_order(kG2oIndex[r], kG2oIndex[c]);
     }
@@ -185,6 +190,7 @@ class LineParser {
   int64_t line_;
   std::string_view tag_;
   const std::vector<std::string_view>& fields_;
+  bool permute_information_;
 };
 
 struct PendingLabel {
@@ -246,7 +252,7 @@ class Reader {
 
   Status ParseLine(int64_t line, std::string_view tag_name, const std::vector<std::string_view>& f) {
     const Tag tag = LookUp(tag_name);
-    LineParser p(name_, line, tag_name, f);
+    LineParser p(name_, line, tag_name, f, !options_.information_in_tangent_order);
     Error error;
     switch (tag) {
       case Tag::kUnknown: {

@@ -15,8 +15,10 @@
 #include "cost_functions/object_kinematic_error.h"
 #include "cost_functions/object_point_measurement_error.h"
 #include "cost_functions/object_point_motion_error.h"
+#include "cost_functions/object_point_motion_error_dsc.h"
 #include "cost_functions/point_measurement_error.h"
 #include "cost_functions/point_motion_error.h"
+#include "cost_functions/point_motion_error_dsc.h"
 #include "cost_functions/pose_between_error.h"
 #include "cost_functions/pose_prior_error.h"
 #include "dynslam/se3_manifold.h"
@@ -174,7 +176,9 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
         {e.pose, e.point});
   }
   for (const MotionEdge& e : graph.motion_edges) {
-    add(EdgeKind::kMotion, e.line, PointMotionError::Create(e.measurement, e.information),
+    add(EdgeKind::kMotion, e.line,
+        options.dsc_motion_residual ? PointMotionErrorDsc::Create(options.dsc_motion_sigma)
+                                    : PointMotionError::Create(e.measurement, e.information),
         {e.prev, e.curr, e.motion});
     a->joined_points_.insert(e.prev);
     a->joined_points_.insert(e.curr);
@@ -185,7 +189,9 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
         {e.camera, e.object_pose, e.point});
   }
   for (const ObjectMotionEdge& e : graph.object_motion_edges) {
-    add(EdgeKind::kObjectMotion, e.line, ObjectPointMotionError::Create(e.information),
+    add(EdgeKind::kObjectMotion, e.line,
+        options.dsc_object_motion_residual ? ObjectPointMotionErrorDsc::Create(e.information)
+                                           : ObjectPointMotionError::Create(e.information),
         {e.pose_prev, e.pose_curr, e.motion, e.point});
   }
   for (const KinematicEdge& e : graph.kinematic_edges) {

@@ -12,8 +12,10 @@
 #include "cost_functions/object_kinematic_error.h"
 #include "cost_functions/object_point_measurement_error.h"
 #include "cost_functions/object_point_motion_error.h"
+#include "cost_functions/object_point_motion_error_dsc.h"
 #include "cost_functions/point_measurement_error.h"
 #include "cost_functions/point_motion_error.h"
+#include "cost_functions/point_motion_error_dsc.h"
 #include "cost_functions/pose_between_error.h"
 #include "cost_functions/pose_prior_error.h"
 #include "dynslam/se3.h"
@@ -248,6 +250,40 @@ TEST(ObjectKinematicErrorTest, ZeroHandValueAndJacobian) {
   for (const Pose& x : CheckPoses()) {
     EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x)}), 1e-7);
     EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(Compose(h, x)), PoseBlock(h)}), 1e-7);
+  }
+}
+
+// SPEC §7 item 2: (m_prev − H⁻¹·m_curr)/σ. H = translation (1,0,0), m_prev = 0,
+// m_curr = (2,0,0), σ = 0.1: H⁻¹·m_curr = (1,0,0), r = (−10, 0, 0).
+TEST(PointMotionErrorDscTest, HandValueZeroAndJacobian) {
+  std::unique_ptr<ceres::CostFunction> cost(PointMotionErrorDsc::Create(0.1));
+  EXPECT_LT((Residual(*cost, {Block{0, 0, 0}, Block{2, 0, 0}, PoseBlock(Translation(1, 0, 0))}) -
+             Eigen::Vector3d(-10, 0, 0))
+                .norm(),
+            1e-14);
+  const Eigen::Vector3d p_curr = Transform(kOffset, Eigen::Vector3d(1, -2, 8));
+  EXPECT_LT(Residual(*cost, {Block{1, -2, 8}, Block{p_curr.x(), p_curr.y(), p_curr.z()},
+                             PoseBlock(kOffset)})
+                .norm(),
+            1e-12);
+  for (const Pose& h : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {Block{1, -2, 8}, Block{0.5, 0.5, 7}, PoseBlock(h)}), 1e-7);
+  }
+}
+
+// SPEC §7 item 6: L_curr⁻¹·H·L_prev·m_L — equal to m_L (not zero) when the kinematics hold.
+TEST(ObjectPointMotionErrorDscTest, IsTheObjectPointWhenKinematicsHold) {
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose l_curr = Compose(kOffset, l_prev);
+  std::unique_ptr<ceres::CostFunction> cost(
+      ObjectPointMotionErrorDsc::Create(Eigen::Matrix3d::Identity()));
+  const Block m_o{0.5, 0.2, -1};
+  EXPECT_LT((Residual(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), m_o}) -
+             Eigen::Vector3d(0.5, 0.2, -1))
+                .norm(),
+            1e-13);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(kOffset), m_o}), 1e-7);
   }
 }
 

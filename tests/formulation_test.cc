@@ -247,6 +247,43 @@ TEST(FormulationEdgeCaseTest, SegmentsShorterThanMinObjectFramesAreDroppedEveryw
   EXPECT_EQ(Roles(*oc_c), (std::array<int64_t, 6>{7, 1, 0, 0, 0, 0}));
 }
 
+// SPEC §7 items 4 and 5 on the synthetic scene: identity motions, one information per point-edge
+// kind (the first edge's), object motion information 1/0.2², first poses at the ground-truth
+// translation with identity rotation.
+TEST(FormulationCompatTest, ReleasedCodeObjectCentricChoices) {
+  const fs::path scene = fs::path(testing::ReferenceDir()) / "synthetic";
+  Expected<Graph> front_end = ReadGraph((scene / "frontend.g2o").string());
+  Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
+  ASSERT_TRUE(front_end.ok() && gt.ok());
+  BuildOptions options;
+  options.motion_init = MotionInit::kIdentity;
+  options.dsc_object_centric_noise = true;
+  Expected<Graph> built = BuildFormulation(*front_end, Formulation::kObjectCentricA, options, &*gt, nullptr);
+  ASSERT_TRUE(built.ok()) << built.error().ToString();
+  const PointEdge* first_dynamic = nullptr;
+  for (const PointEdge& e : front_end->point_edges) {
+    if (e.is_dynamic && first_dynamic == nullptr) first_dynamic = &e;
+  }
+  for (const ObjectPointEdge& e : built->object_point_edges) {
+    ASSERT_EQ(e.information, first_dynamic->information);
+  }
+  for (const PointEdge& e : built->point_edges) {
+    ASSERT_EQ(e.information, built->point_edges.front().information);
+  }
+  for (const ObjectMotionEdge& e : built->object_motion_edges) {
+    ASSERT_LT((e.information - Eigen::Matrix3d::Identity() * 25.0).norm(), 1e-12);  // 1/0.2²
+  }
+  for (const auto& [id, vertex] : built->vertices) {
+    if (vertex.label.role == Role::kMotion) ASSERT_EQ(vertex.pose(), Pose::Identity()) << id;
+  }
+  for (const PriorEdge& e : built->priors) {
+    const Label& label = built->Find(e.pose)->label;
+    if (label.role != Role::kObjectPose) continue;
+    EXPECT_EQ(e.measurement.rotation().coeffs(), Eigen::Quaterniond::Identity().coeffs());
+    EXPECT_EQ(e.measurement.translation(), gt->Object(label.object, label.frame)->translation());
+  }
+}
+
 TEST(FormulationEdgeCaseTest, TwoMotionsOfOneObjectAtOneFrameIsAnError) {
   std::string text = UnlabelledFrontEnd();
   // Tracklet B's second motion edge names motion 56 (a new vertex) instead of 50.

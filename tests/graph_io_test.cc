@@ -92,6 +92,15 @@ TEST(GraphIoTest, PermutesSixBySixInformationOnceToTangentOrder) {
       << out.str();
 }
 
+// SPEC §7 item 1: the released code reads the 6×6 information as already in [ω; ρ] order.
+TEST(GraphIoTest, CompatReadsInformationWithoutPermutation) {
+  ReadOptions options;
+  options.information_in_tangent_order = true;
+  Expected<Graph> graph = ReadText(kPose0 + "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1 0 0 0 0 0 2 0 0 0 0 3 0 0 0 4 0 0 5 0 6\n", options);
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  EXPECT_EQ(graph->priors[0].information.diagonal(), (Vector6d() << 1, 2, 3, 4, 5, 6).finished());
+}
+
 TEST(GraphIoTest, NormalisesQuaternionsOffByMoreThan1e12Only) {
   Expected<Graph> graph = ReadText(
       "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 2\nVERTEX_SE3:QUAT 1 0 0 0 0 0 0 1.0000000000001\n"

@@ -36,6 +36,11 @@ struct BuildOptions {
   // Prior on the first pose of each segment, as variances (information = 1 / variance).
   double object_prior_rotation_variance = 0.2;     // rad²
   double object_prior_translation_variance = 0.4;  // m²
+  // SPEC §7 item 5 (the released code's object-centric noise, never a default): point edges
+  // take the information of the first point edge of their kind, object motion edges isotropic
+  // σ = 0.2, and a segment's first pose the ground-truth translation with identity rotation.
+  // (Item 4, identity motions, is motion_init = kIdentity.)
+  bool dsc_object_centric_noise = false;
 };
 
 struct BuildReport {

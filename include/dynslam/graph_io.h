@@ -22,6 +22,9 @@ namespace dynslam {
 struct ReadOptions {
   // SPEC §1.6: an unknown tag is an error unless this is set; then each skipped tag is counted.
   bool skip_unknown_tags = false;
+  // SPEC §7 item 1 (the released code's reading, never a default): 6×6 information taken as
+  // already in tangent order [ω; ρ], without the permutation of SPEC §1.2.
+  bool information_in_tangent_order = false;
 };
 
 struct ReadReport {

@@ -60,6 +60,12 @@ struct SolverOptions {
   bool eliminate_object_points = false;
   // SPEC §1.7: a graph with no prior is refused unless the smallest-id pose is held constant.
   bool fix_first = false;
+  // SPEC §7, the released code's residuals (never defaults): item 2, EDGE_SE3_MOTION as
+  // (m_prev − H⁻¹·m_curr)/σ with σ = dsc_motion_sigma, ignoring the file's information and z;
+  // item 6, EDGE_SE3_OBJ_MOTION as L_curr⁻¹·H·L_prev·m_L.
+  bool dsc_motion_residual = false;
+  double dsc_motion_sigma = 0.1;
+  bool dsc_object_motion_residual = false;
   // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
   std::array<RobustKernel, kNumEdgeKinds> kernels{};
   // Called after every linear solve Ceres reports (rejected ones included).

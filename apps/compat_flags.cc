@@ -1,0 +1,77 @@
+#include "compat_flags.h"
+
+#include <sstream>
+
+namespace dynslam::cli {
+namespace {
+
+void Huber(SolverOptions* options, EdgeKind kind, double threshold) {
+  options->kernels[static_cast<int>(kind)] = {RobustKernel::Type::kHuber, threshold};
+}
+
+}  // namespace
+
+CompatFlags::CompatFlags(ArgParser* parser) {
+  parser->AddString("compat", &text_,
+                    "the released code's choices (SPEC §7): dsc for all, or item numbers such as "
+                    "1,3: 1 information unpermuted, 2 motion edge σ=0.1 Huber 1e-6 as m_prev-H⁻¹m_curr, "
+                    "3 wc point edges Huber 1e-5, 4 identity initial motions, 5 object-centric "
+                    "noise and first poses, 6 object motion residual without -m_L",
+                    "none|dsc|LIST");
+}
+
+std::optional<std::string> CompatFlags::Finish() {
+  item_.fill(false);
+  if (text_ == "none") return std::nullopt;
+  if (text_ == "dsc") {
+    item_.fill(true);
+    return std::nullopt;
+  }
+  std::stringstream list(text_);
+  for (std::string item; std::getline(list, item, ',');) {
+    if (item.size() != 1 || item[0] < '1' || item[0] > '6') {
+      return "--compat: '" + item + "' is not dsc, none or an item number 1 to 6";
+    }
+    item_[static_cast<size_t>(item[0] - '0')] = true;
+  }
+  return std::nullopt;
+}
+
+bool CompatFlags::any() const {
+  for (size_t i = 1; i < item_.size(); ++i) {
+    if (item_[i]) return true;
+  }
+  return false;
+}
+
+std::string CompatFlags::Describe() const {
+  std::string items;
+  for (size_t i = 1; i < item_.size(); ++i) {
+    if (item_[i]) items += (items.empty() ? "" : ",") + std::to_string(i);
+  }
+  return items.empty() ? "none" : items;
+}
+
+void CompatFlags::Apply(ReadOptions* options) const {
+  options->information_in_tangent_order = item_[1];
+}
+
+void CompatFlags::Apply(BuildOptions* options) const {
+  if (item_[4]) options->motion_init = MotionInit::kIdentity;
+  options->dsc_object_centric_noise = item_[5];
+}
+
+void CompatFlags::Apply(bool world_centric, SolverOptions* options) const {
+  if (item_[2]) {
+    options->dsc_motion_residual = true;
+    Huber(options, EdgeKind::kMotion, 1e-6);
+  }
+  if (item_[3] && world_centric) {
+    Huber(options, EdgeKind::kPoint, 1e-5);
+    Huber(options, EdgeKind::kDynamicPoint, 1e-5);
+  }
+  if (item_[5]) Huber(options, EdgeKind::kObjectMotion, 1e-3);
+  options->dsc_object_motion_residual = item_[6];
+}
+
+}  // namespace dynslam::cli
