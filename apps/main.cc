@@ -18,6 +18,8 @@ constexpr Command kCommands[] = {
      dynslam::cli::RunBuild},
     {"compare", "build, solve and score every formulation; print the paper's Tables I-III",
      dynslam::cli::RunCompare},
+    {"metrics", "score a solved graph file against ground truth (SPEC §5)",
+     dynslam::cli::RunMetrics},
     {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},
     {"verify", "compare a solve's outputs with a reference solve (GTSAM)", dynslam::cli::RunVerify},
 };

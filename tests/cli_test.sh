@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The `dynslam` command as a user meets it: exit codes 0/1/2 (STYLE.md), errors that name the
+# file and line, outputs of SPEC §4. Usage: cli_test.sh DYNSLAM_BINARY REPOSITORY_ROOT
+set -u
+dynslam="$1"
+root="$2"
+data="$root/data/reference"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+
+check() {  # description expected_exit command…   (stdout+stderr in $work/out)
+  local description="$1" expected="$2"
+  shift 2
+  "$@" >"$work/out" 2>&1
+  local code=$?
+  if [ "$code" -eq "$expected" ]; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL: $description: exit $code, expected $expected"
+    head -5 "$work/out"
+  fi
+}
+expect_output() {  # description pattern
+  if grep -q -- "$2" "$work/out"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL: $1: output lacks '$2'"
+    head -5 "$work/out"
+  fi
+}
+
+check "no command" 2 "$dynslam"
+check "top-level help" 0 "$dynslam" --help
+check "unknown command" 2 "$dynslam" frobnicate
+for command in solve build compare metrics verify; do
+  check "$command --help" 0 "$dynslam" "$command" --help
+  expect_output "$command --help lists defaults" "default:"
+done
+check "unknown option" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --linear-solver cholmod
+expect_output "unknown option value" "is not one of"
+check "missing file" 2 "$dynslam" solve "$work/missing.g2o" --out "$work/x"
+expect_output "missing file named" "missing.g2o"
+
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_TRACKXYZ 1 0 zero 0\n' >"$work/bad.g2o"
+check "bad number" 2 "$dynslam" solve "$work/bad.g2o" --out "$work/x"
+expect_output "bad number names file and line" "bad.g2o:2: VERTEX_TRACKXYZ: field 3 'zero' is not a number"
+
+head -3 "$data/posegraph_parking-garage/graphs/pose_graph.g2o" >"$work/noprior.g2o"
+grep -m1 EDGE_SE3:QUAT "$data/posegraph_parking-garage/graphs/pose_graph.g2o" >>"$work/noprior.g2o"
+check "gauge freedom refused" 2 "$dynslam" solve "$work/noprior.g2o" --out "$work/x"
+expect_output "gauge freedom explained" "fix-first"
+check "gauge fixed with --fix-first" 0 "$dynslam" solve "$work/noprior.g2o" --out "$work/fixed" --fix-first
+
+check "solve" 0 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --gt "$data/synthetic/gt.txt" --out "$work/wc"
+for file in solution.g2o cameras.csv motions.csv object_poses.csv convergence.csv summary.json; do
+  if [ -s "$work/wc/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: solve wrote no $file"; fi
+done
+check "verify against GTSAM tight_exact" 0 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact"
+expect_output "verify passes" "^PASS"
+check "verify beyond tolerance exits 1" 1 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact" --translation-tolerance 1e-12
+expect_output "verify names the worst variable" "worst vertex"
+check "verify against another graph is bad input" 2 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/oc_b/tight_exact"
+expect_output "verify names the missing vertex" "has no vertex"
+check "a solve stopped by the iteration limit is still usable" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/limit" --max-iterations 2
+check "build" 0 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_b --gt "$data/synthetic/gt.txt" --out "$work/oc_b.g2o"
+expect_output "build report" "kept: object 1 frames 0..29"
+check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
+check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 7
+
+echo "cli: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
