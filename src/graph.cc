@@ -207,8 +207,10 @@ Status CheckEdgesAgainstRoles(const Graph& graph) {
                        "); it must join two cameras (odometry) or two motions (smoothing)"};
     }
   }
-  std::unordered_map<VertexId, std::pair<VertexId, int64_t>> observer;  // point → camera, line
-  for (const PointEdge& e : graph.point_edges) observer.emplace(e.point, std::pair{e.pose, e.line});
+  // point → (camera, line) of every EDGE_SE3_TRACKXYZ observing it. The check below is about
+  // the set, so it does not depend on the order of the lines (found by fuzzing).
+  std::unordered_multimap<VertexId, std::pair<VertexId, int64_t>> observers;
+  for (const PointEdge& e : graph.point_edges) observers.emplace(e.point, std::pair{e.pose, e.line});
   std::unordered_map<VertexId, int64_t> as_prev, as_curr;  // point → line of its motion edge
   for (const MotionEdge& e : graph.motion_edges) {
     for (const VertexId id : {e.prev, e.curr}) {
@@ -218,12 +220,15 @@ Status CheckEdgesAgainstRoles(const Graph& graph) {
                          ", which is not a dynamic point (its EDGE_SE3_TRACKXYZ has is_dynamic = 0)"};
       }
     }
-    if (auto it = observer.find(e.curr); it != observer.end() && it->second.first != e.camera) {
+    const auto [first, last] = observers.equal_range(e.curr);
+    if (first != last && std::none_of(first, last, [&](const auto& observer) {
+          return observer.second.first == e.camera;
+        })) {
       return Error{"", e.line,
                    "EDGE_SE3_MOTION names camera " + std::to_string(e.camera) + ", but point " +
                        std::to_string(e.curr) + " is observed by camera " +
-                       std::to_string(it->second.first) + " (line " +
-                       std::to_string(it->second.second) + ")"};
+                       std::to_string(first->second.first) + " (line " +
+                       std::to_string(first->second.second) + ")"};
     }
     if (auto [it, inserted] = as_prev.emplace(e.prev, e.line); !inserted) {
       return Error{"", e.line,

@@ -236,6 +236,19 @@ TEST(GraphIoBadInputTest, MotionEdgeCameraMustObserveTheCurrentPoint) {
   ExpectError(text, 12, "is observed by camera 1");
 }
 
+// Found by fuzzing: with a dynamic point observed by two cameras, the motion edge's camera check
+// depended on line order, so a file that read could be written in an order that did not.
+TEST(GraphIoFuzzRegressionTest, MotionEdgeCameraCheckDoesNotDependOnLineOrder) {
+  std::string text = FrontEnd();
+  text += "EDGE_SE3_TRACKXYZ 0 4 1 0 5" + kI6 + " 1\n";  // point 4 also seen from camera 0
+  Expected<Graph> graph = ReadText(text);
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  std::ostringstream out;
+  WriteGraph(*graph, out);  // camera 0's observation of point 4 is now written first
+  Expected<Graph> again = ReadText(out.str());
+  EXPECT_TRUE(again.ok()) << again.error().ToString();
+}
+
 TEST(GraphIoBadInputTest, NonexistentFileAndDirectory) {
   Expected<Graph> missing = ReadGraph("/nonexistent/graph.g2o");
   ASSERT_FALSE(missing.ok());
