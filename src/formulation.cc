@@ -65,7 +65,8 @@ class Builder {
   void ReportDrops();
 
   bool Kept(const Tracklet& t) const {
-    return t.dynamic && t.points.size() > 1 && segment_of_.at(&t)->kept;
+    auto it = segment_of_.find(&t);
+    return t.dynamic && t.points.size() > 1 && it != segment_of_.end() && it->second->kept;
   }
   Pose MotionValue(VertexId id) const {
     return options_.motion_init == MotionInit::kIdentity ? Pose::Identity()
@@ -133,9 +134,21 @@ Status Builder::FindTracklets() {
         t.points.push_back(p);
         auto it = next.find(p);
         if (it == next.end()) break;
-        t.edges.push_back(it->second);
-        t.object = it->second->object;
-        p = it->second->curr;
+        const MotionEdge* e = it->second;
+        // A tracklet is one object at consecutive frames (found by fuzzing: an unlabelled file
+        // can chain edges whose frames or objects disagree).
+        if (!t.edges.empty() && (e->frame != t.edges.back()->frame + 1 || e->object != t.object)) {
+          return Fail(e->line, "EDGE_SE3_MOTION continues the tracklet of line " +
+                                   std::to_string(t.edges.back()->line) + " (object " +
+                                   std::to_string(t.object) + ", frame " +
+                                   std::to_string(t.edges.back()->frame) + ") with object " +
+                                   std::to_string(e->object) + " at frame " +
+                                   std::to_string(e->frame) + "; expected the same object at frame " +
+                                   std::to_string(t.edges.back()->frame + 1));
+        }
+        t.edges.push_back(e);
+        t.object = e->object;
+        p = e->curr;
       }
       tracklets_.push_back(t);
     }

@@ -284,6 +284,21 @@ TEST(FormulationCompatTest, ReleasedCodeObjectCentricChoices) {
   }
 }
 
+// Found by fuzzing: an unlabelled file whose motion edges chain a tracklet from one object to
+// another made the builder throw; it is now an error naming the line.
+TEST(FormulationFuzzRegressionTest, TrackletThatChangesObjectIsAnError) {
+  std::string text = UnlabelledFrontEnd();
+  const std::string edge = "EDGE_SE3_MOTION 21 22 51 0 0 0 1 0 0 1 0 1 9";
+  ASSERT_NE(text.find(edge), std::string::npos);
+  text.replace(text.find(edge), edge.size(), "EDGE_SE3_MOTION 21 22 51 0 0 0 1 0 0 1 0 1 8");
+  const Graph front_end = ReadText(text);
+  Expected<Graph> built = BuildFormulation(front_end, Formulation::kWorldCentric, BuildOptions{},
+                                           nullptr, nullptr, "frontend.g2o");
+  ASSERT_FALSE(built.ok());
+  EXPECT_NE(built.error().message.find("expected the same object"), std::string::npos)
+      << built.error().ToString();
+}
+
 TEST(FormulationEdgeCaseTest, TwoMotionsOfOneObjectAtOneFrameIsAnError) {
   std::string text = UnlabelledFrontEnd();
   // Tracklet B's second motion edge names motion 56 (a new vertex) instead of 50.
