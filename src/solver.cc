@@ -85,6 +85,8 @@ class Assembly {
   // Cost per kind at the current values of the blocks.
   CostByKind Evaluate();
   void WriteBack(Graph* graph) const;
+  // An error naming the first edge of `kind` whose cost is not finite, if any.
+  Status CheckFinite(EdgeKind kind);
   // Schur ordering: points no residual joins to another point go first — object-frame points
   // only when asked (docs/SOLVER.md). Null when no point can go first (Ceres then finds an
   // independent set itself).
@@ -112,6 +114,7 @@ class Assembly {
   SE3Manifold manifold_;
   std::array<std::unique_ptr<ceres::LossFunction>, kNumEdgeKinds> losses_;
   std::array<std::vector<ceres::ResidualBlockId>, kNumEdgeKinds> blocks_;
+  std::array<std::vector<int64_t>, kNumEdgeKinds> lines_;  // file line of each residual block
   // For the Schur ordering: points that share a residual with another point.
   std::unordered_set<VertexId> joined_points_;
   std::unique_ptr<ceres::Problem> problem_;
@@ -133,6 +136,7 @@ Status Assembly::Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::Cos
   }
   const int k = static_cast<int>(kind);
   blocks_[k].push_back(problem_->AddResidualBlock(owned.release(), losses_[k].get(), blocks));
+  lines_[k].push_back(line);
   return Status::Ok();
 }
 
@@ -231,6 +235,22 @@ CostByKind Assembly::Evaluate() {
     problem_->Evaluate(evaluate_options, &cost[k], nullptr, nullptr, nullptr);
   }
   return cost;
+}
+
+Status Assembly::CheckFinite(EdgeKind kind) {
+  const int k = static_cast<int>(kind);
+  for (size_t i = 0; i < blocks_[k].size(); ++i) {
+    double cost = 0;
+    const bool evaluated =
+        problem_->EvaluateResidualBlock(blocks_[k][i], true, &cost, nullptr, nullptr);
+    if (!evaluated || !std::isfinite(cost)) {
+      return Error{"", lines_[k][i],
+                   std::string("the ") + EdgeKindName(kind) +
+                       " edge on this line has a cost that is not finite at the initial values "
+                       "(a huge coordinate or information?); nothing was solved"};
+    }
+  }
+  return Status::Ok();
 }
 
 void Assembly::WriteBack(Graph* graph) const {
@@ -411,6 +431,10 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
 
   report.initial_cost_by_kind = assembly.Evaluate();
   report.initial_cost = TotalCost(report.initial_cost_by_kind);
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    if (std::isfinite(report.initial_cost_by_kind[static_cast<int>(kind)])) continue;
+    if (Status status = assembly.CheckFinite(kind); !status.ok()) return status.error();
+  }
 
   ceres::Solver::Options ceres_options = MakeCeresOptions(options);
   // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained

@@ -106,9 +106,19 @@ TEST(SolverTest, EdgeNamingOneVertexTwiceIsAnErrorNotACrash) {
   EXPECT_NE(report.error().message.find("twice"), std::string::npos);
 }
 
+TEST(SolverTest, NonFiniteInitialCostIsAnErrorNamingTheEdge) {
+  std::string text = kTwoPoses;
+  text.replace(text.find("VERTEX_SE3:QUAT 1 1.3"), 21, "VERTEX_SE3:QUAT 1 1e300");
+  Graph graph = Read(text);
+  Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.error().line, 4);
+  EXPECT_NE(report.error().message.find("not finite"), std::string::npos);
+}
+
 TEST(SolverTest, HuberKernelLowersTheCostOfALargeResidual) {
-  // One odometry residual of whitened norm 0.3·… : with Huber(0.01) the cost is
-  // 2k‖r‖ − k² (SPEC §1.5), below ½‖r‖² without it.
+  // The odometry residual is far beyond k = 0.01: with Huber(k) its cost is ½(2k‖r‖ − k²)
+  // (SPEC §1.5, Ceres's HuberLoss), computed here from the plain cost ½‖r‖².
   Graph graph = Read(kTwoPoses);
   Expected<CostByKind> plain = EvaluateCost(graph);
   SolverOptions options;
