@@ -8,21 +8,10 @@
 
 #include <Eigen/SVD>
 
+#include "dynslam/se3.h"  // header-only, Eigen only
+
 namespace dynslam {
 namespace {
-
-// Pose algebra on doubles without Ceres (the graph layer stays Ceres-free).
-Pose Multiply(const Pose& a, const Pose& b) {
-  return Pose::FromRotationTranslation(a.rotation() * b.rotation(),
-                                       a.rotation() * b.translation() + a.translation());
-}
-Pose Invert(const Pose& pose) {
-  const Eigen::Quaterniond q_inv = pose.rotation().conjugate();
-  return Pose::FromRotationTranslation(q_inv, -(q_inv * pose.translation()));
-}
-Eigen::Vector3d Apply(const Pose& pose, const Eigen::Vector3d& p) {
-  return pose.rotation() * p + pose.translation();
-}
 
 // A maximal chain of dynamic points linked by motion edges (SPEC §3.1), or one static point.
 struct Tracklet {
@@ -358,7 +347,7 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
         ++initialised_from_gt_;
       } else if (x_gt != nullptr && l_gt != nullptr && camera != camera_of_frame_.end()) {
         // The true object pose seen from its camera, placed in the drifted initial world.
-        pose = Multiply(Multiply(fe_.Find(camera->second)->pose(), Invert(*x_gt)), *l_gt);
+        pose = Compose(Compose(fe_.Find(camera->second)->pose(), Inverse(*x_gt)), *l_gt);
         ++initialised_from_gt_;
       } else {
         pose = centroid(k);
@@ -372,12 +361,12 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
         to.push_back(fe_.Find(p)->point());
       }
       if (!Align(from, to, &pose)) {
-        pose = Multiply(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
+        pose = Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
       }
     }
     poses[k] = pose;
     for (const auto& [t, p] : observed[k]) {
-      if (t->points.front() == p) object_points[t] = Apply(Invert(pose), fe_.Find(p)->point());
+      if (t->points.front() == p) object_points[t] = Transform(Inverse(pose), fe_.Find(p)->point());
     }
   }
   // Ids in the order of SPEC §3.4: poses by frame, then points by first front-end point id.

@@ -3,20 +3,12 @@
 #include <cmath>
 #include <vector>
 
+#include "dynslam/se3.h"  // header-only, Eigen only
+
 namespace dynslam {
 namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / M_PI;
-
-// Small Pose algebra without Ceres (the graph layer does not include se3.h's Jet machinery).
-Pose Multiply(const Pose& a, const Pose& b) {
-  return Pose::FromRotationTranslation(a.rotation() * b.rotation(),
-                                       a.rotation() * b.translation() + a.translation());
-}
-Pose Invert(const Pose& pose) {
-  const Eigen::Quaterniond q_inv = pose.rotation().conjugate();
-  return Pose::FromRotationTranslation(q_inv, -(q_inv * pose.translation()));
-}
 
 struct Accumulator {
   std::map<int64_t, std::vector<std::pair<double, double>>> per_object;
@@ -84,7 +76,7 @@ std::map<std::pair<int64_t, int64_t>, Pose> ComposeFromMotions(
       poses[{object, frame - 1}] = *start;
     }
     if (skipping) continue;
-    poses[{object, frame}] = Multiply(it->second, poses.at({object, frame - 1}));
+    poses[{object, frame}] = Compose(it->second, poses.at({object, frame - 1}));
   }
   return poses;
 }
@@ -92,7 +84,7 @@ std::map<std::pair<int64_t, int64_t>, Pose> ComposeFromMotions(
 }  // namespace
 
 std::pair<double, double> PoseError(const Pose& estimate, const Pose& truth) {
-  const Pose error = Multiply(Invert(estimate), truth);
+  const Pose error = Compose(Inverse(estimate), truth);
   const Eigen::Quaterniond q = error.rotation();
   const double angle = 2.0 * std::atan2(q.vec().norm(), std::abs(q.w()));
   return {angle * kDegreesPerRadian, error.translation().norm()};
@@ -118,8 +110,8 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
     const Pose* truth = gt.Camera(frame);
     const Pose* truth_previous = gt.Camera(frame - 1);
     if (previous == cameras.end() || truth == nullptr || truth_previous == nullptr) continue;
-    const auto [rot, trans] = PoseError(Multiply(Invert(previous->second), pose),
-                                        Multiply(Invert(*truth_previous), *truth));
+    const auto [rot, trans] = PoseError(Compose(Inverse(previous->second), pose),
+                                        Compose(Inverse(*truth_previous), *truth));
     ++metrics.camera.count;
     metrics.camera.mean_rot_deg += rot;
     metrics.camera.mean_trans_m += trans;
@@ -136,7 +128,7 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
     const Pose* truth = gt.Object(object, frame);
     const Pose* truth_previous = gt.Object(object, frame - 1);
     if (truth == nullptr || truth_previous == nullptr) continue;
-    motion_errors.Add(object, motion, Multiply(*truth, Invert(*truth_previous)));
+    motion_errors.Add(object, motion, Compose(*truth, Inverse(*truth_previous)));
   }
   metrics.object_motion = motion_errors.Finish();
 
@@ -155,8 +147,8 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
         truth_previous == nullptr) {
       continue;
     }
-    pose_errors.Add(object, Multiply(Invert(previous->second), current->second),
-                    Multiply(Invert(*truth_previous), *truth));
+    pose_errors.Add(object, Compose(Inverse(previous->second), current->second),
+                    Compose(Inverse(*truth_previous), *truth));
   }
   metrics.object_pose = pose_errors.Finish();
   return metrics;
