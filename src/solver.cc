@@ -399,6 +399,7 @@ Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& optio
 
 Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
   if (Status status = CheckOptions(options); !status.ok()) return status.error();
+  if (graph->NumEdges() == 0) return Error{"", 0, "the graph has no edges: there is nothing to solve"};
   if (graph->priors.empty() && !options.fix_first) {
     return Error{"", 0,
                  "the graph has no EDGE_SE3_PRIOR, so it is determined only up to a rigid motion "
@@ -473,12 +474,14 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
     case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;
     default: report.termination = "failure"; break;
   }
-  report.time_total_s = summary.total_time_in_seconds;
-  report.time_minimizer_s = summary.minimizer_time_in_seconds;
-  report.time_preprocessor_s = summary.preprocessor_time_in_seconds;
-  report.time_evaluation_s =
-      summary.residual_evaluation_time_in_seconds + summary.jacobian_evaluation_time_in_seconds;
-  report.time_linear_solver_s = summary.linear_solver_time_in_seconds;
+  // Ceres reports −1 for a phase that did not run.
+  auto seconds = [](double s) { return std::max(0.0, s); };
+  report.time_total_s = seconds(summary.total_time_in_seconds);
+  report.time_minimizer_s = seconds(summary.minimizer_time_in_seconds);
+  report.time_preprocessor_s = seconds(summary.preprocessor_time_in_seconds);
+  report.time_evaluation_s = seconds(summary.residual_evaluation_time_in_seconds) +
+                             seconds(summary.jacobian_evaluation_time_in_seconds);
+  report.time_linear_solver_s = seconds(summary.linear_solver_time_in_seconds);
 
   report.final_cost_by_kind = assembly.Evaluate();
   report.final_cost = TotalCost(report.final_cost_by_kind);

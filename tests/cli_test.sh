@@ -55,6 +55,10 @@ check "gauge freedom refused" 2 "$dynslam" solve "$work/noprior.g2o" --out "$wor
 expect_output "gauge freedom explained" "fix-first"
 check "gauge fixed with --fix-first" 0 "$dynslam" solve "$work/noprior.g2o" --out "$work/fixed" --fix-first
 
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n' >"$work/no_edges.g2o"
+check "a graph with no edges is refused" 2 "$dynslam" solve "$work/no_edges.g2o" --out "$work/x" --fix-first
+expect_output "no edges explained" "nothing to solve"
+
 check "solve" 0 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --gt "$data/synthetic/gt.txt" --out "$work/wc"
 for file in solution.g2o cameras.csv motions.csv object_poses.csv convergence.csv summary.json; do
   if [ -s "$work/wc/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: solve wrote no $file"; fi
