@@ -140,7 +140,9 @@ class LineParser {
     double v[7];
     if (!Numbers(first, 7, v, error)) return false;
     Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
-    const double norm = q.norm();
+    // stableNorm: a component of 1e290 must not overflow the sum of squares to inf, which would
+    // normalise the quaternion to zero (found by fuzzing).
+    const double norm = q.coeffs().stableNorm();
     if (norm == 0) {
       *error = Fail("the quaternion (fields " + std::to_string(first + 4) + " to " +
                     std::to_string(first + 7) + ") is zero");

@@ -78,8 +78,9 @@ Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
       }
     }
     Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
-    if (q.norm() == 0) return fail("zero quaternion");
-    if (std::abs(q.norm() - 1) > 1e-12) q.normalize();
+    const double norm = q.coeffs().stableNorm();  // no overflow for huge components
+    if (norm == 0) return fail("zero quaternion");
+    if (std::abs(norm - 1) > 1e-12) q.coeffs() /= norm;
     const Pose pose = Pose::FromRotationTranslation(q, Eigen::Vector3d(v[0], v[1], v[2]));
     const bool inserted = camera ? gt.cameras.emplace(frame, pose).second
                                  : gt.objects.emplace(std::pair{object, frame}, pose).second;

@@ -2,6 +2,7 @@
 // round trips, and every bad input of SPEC §1.6 as an error naming file, line and problem.
 #include "dynslam/graph_io.h"
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -247,6 +248,17 @@ TEST(GraphIoFuzzRegressionTest, MotionEdgeCameraCheckDoesNotDependOnLineOrder) {
   WriteGraph(*graph, out);  // camera 0's observation of point 4 is now written first
   Expected<Graph> again = ReadText(out.str());
   EXPECT_TRUE(again.ok()) << again.error().ToString();
+}
+
+// Found by fuzzing: a quaternion component of 1e290 overflowed the norm to inf and the reader
+// stored a zero quaternion, which it then could not read back.
+TEST(GraphIoFuzzRegressionTest, HugeQuaternionComponentsNormaliseWithoutOverflow) {
+  Expected<Graph> graph = ReadText("VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1e290\n"
+                                   "VERTEX_SE3:QUAT 1 0 0 0 1e-200 0 0 1e-200\n");
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  EXPECT_EQ(graph->Find(0)->value[3], 1.0);
+  EXPECT_NEAR(graph->Find(1)->value[0], std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(graph->Find(1)->value[3], std::sqrt(0.5), 1e-15);
 }
 
 TEST(GraphIoBadInputTest, NonexistentFileAndDirectory) {
