@@ -20,6 +20,8 @@ constexpr Command kCommands[] = {
      dynslam::cli::RunCompare},
     {"metrics", "score a solved graph file against ground truth (SPEC §5)",
      dynslam::cli::RunMetrics},
+    {"simulate", "simulate a front end on KITTI Tracking ground truth (or a synthetic scene)",
+     dynslam::cli::RunSimulate},
     {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},
     {"verify", "compare a solve's outputs with a reference solve (GTSAM)", dynslam::cli::RunVerify},
 };
