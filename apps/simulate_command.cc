@@ -65,7 +65,7 @@ std::string ArgumentsLine(int argc, char** argv) {
 int RunSimulate(int argc, char** argv) {
   SimulateOptions o;
   std::string kitti_dir = "data/kitti_tracking", sequence, frames, out_prefix;
-  std::string object_types = "Car,Van,Truck,Tram";
+  std::string object_types = "Car,Van,Truck,Tram,Cyclist,Misc";
   int64_t seed = 0;
   bool no_noise = false;
   ArgParser parser(
@@ -80,7 +80,7 @@ int RunSimulate(int argc, char** argv) {
                    "DIR");
   parser.AddString("seq", &sequence, "sequence number, e.g. 0003 (required unless --synthetic)",
                    "NNNN");
-  parser.AddString("frames", &frames, "frame range A:B, B exclusive (default: all frames)", "A:B");
+  parser.AddString("frames", &frames, "frame range A:B, B exclusive; A: and :B allowed; all frames when absent", "A:B");
   parser.AddInt("seed", &seed, "random seed", 0, INT64_MAX);
   parser.AddFlag("synthetic", &o.synthetic, "a tiny hand-made scene, no KITTI data");
   parser.AddInt("synthetic-frames", &o.synthetic_frames, "frames of the synthetic scene", 2,

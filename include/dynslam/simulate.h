@@ -93,8 +93,10 @@ struct SimulateOptions {
   double moving_min_extent = 2.0;   // m
   double moving_min_speed = 1.0;    // m/s
   int64_t speed_window_frames = 10;
-  // Label types simulated as rigid objects; others (pedestrians, cyclists, DontCare) are ignored.
-  std::vector<std::string> object_types = {"Car", "Van", "Truck", "Tram"};
+  // Label types simulated as rigid boxes; others (Pedestrian, Person_sitting: not rigid;
+  // DontCare) are ignored. Cyclist and Misc are in because the paper's tables include them
+  // (sequence 00 object 1 is a cyclist, 20 object 32 a Misc).
+  std::vector<std::string> object_types = {"Car", "Van", "Truck", "Tram", "Cyclist", "Misc"};
 };
 
 // Pinhole of the image the front end sees (KITTI: P2, colour camera 2) and the stereo baseline.
