@@ -57,6 +57,15 @@ class Builder {
     auto it = segment_of_.find(&t);
     return t.dynamic && t.points.size() > 1 && it != segment_of_.end() && it->second->kept;
   }
+  // SPEC §3.2: a smoothing edge is kept when it joins the motions of consecutive frames of one
+  // kept segment. Two kept motions of one object at frames k and k+1 are in one segment (its
+  // motions are those of every frame k0+1 … k1), so this is the whole test.
+  bool KeptSmoothing(const BetweenEdge& e) const {
+    if (kept_motions_.count(e.from) == 0 || kept_motions_.count(e.to) == 0) return false;
+    const Label& a = fe_.Find(e.from)->label;
+    const Label& b = fe_.Find(e.to)->label;
+    return a.object == b.object && (a.frame - b.frame == 1 || b.frame - a.frame == 1);
+  }
   Pose MotionValue(VertexId id) const {
     return options_.motion_init == MotionInit::kIdentity ? Pose::Identity()
                                                          : fe_.Find(id)->pose();
@@ -266,16 +275,35 @@ void Builder::ReportDrops() {
         Count(points, "point edges") + ", " + Count(edges, "motion edges") + ", " +
         Count(smoothing, "smoothing edges"));
   }
-  int64_t dropped_motions = 0;
-  for (const auto& [key, id] : motion_at_) dropped_motions += kept_motions_.count(id) == 0;
-  int64_t dropped_smoothing = 0;
+  // Motions in no segment: a labelled file's motion vertex that no motion edge uses (an
+  // unlabelled file has no such motion: its motions are known from their edges).
+  int64_t motions_in_no_segment = 0;
+  for (const auto& [key, id] : motion_at_) {
+    bool in_segment = false;
+    for (const Segment& s : segments_) {
+      in_segment |= s.object == key.first && s.first < key.second && key.second <= s.last;
+    }
+    motions_in_no_segment += !in_segment;
+  }
+  if (motions_in_no_segment > 0) {
+    Say("dropped: " + Count(motions_in_no_segment, "motions") + ": in no motion edge");
+  }
+  int64_t dropped_smoothing = 0, not_consecutive = 0;
   for (const BetweenEdge& e : fe_.betweens) {
     if (fe_.Find(e.from)->label.role != Role::kMotion) continue;
-    dropped_smoothing += kept_motions_.count(e.from) == 0 || kept_motions_.count(e.to) == 0;
+    if (kept_motions_.count(e.from) == 0 || kept_motions_.count(e.to) == 0) {
+      ++dropped_smoothing;
+    } else if (!KeptSmoothing(e)) {
+      ++not_consecutive;
+    }
   }
   if (dropped_smoothing > 0) {
     Say("dropped: " + Count(dropped_smoothing, "smoothing edges") +
         " in all (one of their motions is dropped)");
+  }
+  if (not_consecutive > 0) {
+    Say("dropped: " + Count(not_consecutive, "smoothing edges") +
+        ": they do not join motions of consecutive frames of one segment");
   }
   for (const Segment& s : segments_) {
     if (!s.kept) continue;
@@ -422,7 +450,7 @@ Expected<Graph> Builder::Build(Formulation formulation) {
   for (const PriorEdge& e : fe_.priors) out.priors.push_back(e);
   for (const BetweenEdge& e : fe_.betweens) {
     const bool odometry = fe_.Find(e.from)->label.role == Role::kCamera;
-    if (odometry || (kept_motions_.count(e.from) > 0 && kept_motions_.count(e.to) > 0)) {
+    if (odometry || KeptSmoothing(e)) {
       out.betweens.push_back(e);
     }
   }

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -45,6 +46,11 @@ const Pose* GroundTruth::Object(int64_t object, int64_t frame) const {
 }
 
 Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
+  // A directory opens on Linux and then reads nothing: say so instead of returning no records.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    return Error{path, 0, "is a directory, not a ground-truth file"};
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{path, 0, "cannot open the ground-truth file"};
   GroundTruth gt;
@@ -90,6 +96,7 @@ Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
                                " at frame " + std::to_string(frame));
     }
   }
+  if (in.bad()) return Error{path, number + 1, "read error"};
   return gt;
 }
 
