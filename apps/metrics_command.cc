@@ -38,7 +38,18 @@ int RunMetrics(int argc, char** argv) {
     std::cerr << "error: " << gt.error().ToString() << "\n";
     return kExitBadInput;
   }
-  const std::string json = MetricsJson(ComputeMetrics(*solved, *gt)).Dump() + "\n";
+  // The shape of the reference metrics.json: the metrics and what they were computed from,
+  // keys in alphabetical order.
+  const Json metrics = MetricsJson(ComputeMetrics(*solved, *gt));
+  Json document = Json::Object();
+  document.Set("camera", *metrics.Find("camera"));
+  if (solved->formulation) document.Set("formulation", *solved->formulation);
+  document.Set("ground_truth", gt_path)
+      .Set("object_centric", *metrics.Find("object_centric"))
+      .Set("object_motion", *metrics.Find("object_motion"))
+      .Set("object_pose", *metrics.Find("object_pose"))
+      .Set("solution", solved_path);
+  const std::string json = document.Dump() + "\n";
   std::fputs(json.c_str(), stdout);
   if (!out_path.empty()) {
     std::ofstream out(out_path, std::ios::trunc);

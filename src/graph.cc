@@ -220,8 +220,16 @@ Status CheckEdgesAgainstRoles(const Graph& graph) {
                          ", which is not a dynamic point (its EDGE_SE3_TRACKXYZ has is_dynamic = 0)"};
       }
     }
+    // SPEC §1.2: `camera` is the camera of the current point's EDGE_SE3_TRACKXYZ, so the
+    // current point must have one.
     const auto [first, last] = observers.equal_range(e.curr);
-    if (first != last && std::none_of(first, last, [&](const auto& observer) {
+    if (first == last) {
+      return Error{"", e.line,
+                   "EDGE_SE3_MOTION names camera " + std::to_string(e.camera) + ", but point " +
+                       std::to_string(e.curr) +
+                       " ('curr') has no EDGE_SE3_TRACKXYZ: a dynamic point must be observed"};
+    }
+    if (std::none_of(first, last, [&](const auto& observer) {
           return observer.second.first == e.camera;
         })) {
       return Error{"", e.line,

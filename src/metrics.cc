@@ -171,8 +171,12 @@ Json MetricsJson(const Metrics& metrics) {
         .Set("per_object", std::move(per_object));
   };
   Json object_pose = family(metrics.object_pose, "pairs");
-  object_pose.Set("segments_without_ground_truth_start",
-                  metrics.segments_without_ground_truth_start);
+  // Only world-centric poses are composed from a ground-truth start (the reference files carry
+  // the count for wc only).
+  if (!metrics.object_centric) {
+    object_pose.Set("segments_without_ground_truth_start",
+                    metrics.segments_without_ground_truth_start);
+  }
   return Json::Object()
       .Set("object_centric", metrics.object_centric)
       .Set("camera", Json::Object()

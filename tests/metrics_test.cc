@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -57,6 +58,91 @@ TEST(MetricsTest, RotationErrorIsInDegreesAndRobustNearPi) {
   EXPECT_NEAR(PoseError(quarter, identity).first, 90.0, 1e-12);
 }
 
+// E_r is robust at both ends: 1e-9 rad and π − 1e-9 rad (acos of the trace would lose both).
+TEST(MetricsTest, RotationErrorIsAccurateNearZeroAndNearPi) {
+  const Pose identity;
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
+  for (const double angle : {1e-9, 1e-6, M_PI - 1e-6, M_PI - 1e-9}) {
+    const Pose rotated = Pose::FromRotationTranslation(
+        Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)), {0, 0, 0});
+    EXPECT_NEAR(PoseError(identity, rotated).first, angle * 180 / M_PI, 1e-12 * 180) << angle;
+    EXPECT_NEAR(PoseError(rotated, identity).first, angle * 180 / M_PI, 1e-12 * 180) << angle;
+  }
+}
+
+// World-centric object poses start each run of motions at its ground-truth pose (SPEC §5).
+// Object 5: motions at frames 1, 2 and 5, 6; ground truth at frames 0, 1, 2, 5, 6 (not 4), moving
+// +1 m in x per frame. Estimated motions move exactly that except H_2 (+1.5 m).
+// Motions: H_1, H_2, H_6 have ground truth (H_5 needs L^gt_4): 3 motions, E_t 0, 0.5, 0 → 1/6.
+// Poses: the run 1..2 starts at L^gt_0 → pairs (0,1) E_t 0 and (1,2) E_t 0.5, mean 0.25; the run
+// 5..6 has no L^gt_4 → skipped (no pairs) and counted.
+TEST(MetricsTest, WorldCentricSegmentWithoutGroundTruthStartIsSkippedAndCounted) {
+  std::istringstream in(
+      "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
+      "VERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 1.5 0 0 0 0 0 1\n"
+      "VERTEX_SE3:QUAT 5 1 0 0 0 0 0 1\nVERTEX_SE3:QUAT 6 1 0 0 0 0 0 1\n"
+      "LABEL_CAMERA 0 0\nLABEL_MOTION 1 5 1\nLABEL_MOTION 2 5 2\nLABEL_MOTION 5 5 5\n"
+      "LABEL_MOTION 6 5 6\n");
+  Expected<Graph> graph = ReadGraph(in, "wc.g2o");
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  GroundTruth gt;
+  for (const int k : {0, 1, 2, 5, 6}) {
+    gt.objects[{5, k}] = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), {double(k), 0, 0});
+  }
+  const Metrics m = ComputeMetrics(*graph, gt);
+  EXPECT_FALSE(m.object_centric);
+  EXPECT_EQ(m.camera.count, 0);
+  EXPECT_EQ(m.object_motion.count, 3);
+  EXPECT_NEAR(m.object_motion.mean_trans_m, 0.5 / 3, 1e-15);
+  EXPECT_EQ(m.object_pose.count, 2);
+  EXPECT_EQ(m.object_pose.objects, 1);
+  EXPECT_NEAR(m.object_pose.per_object.at(5).mean_trans_m, 0.25, 1e-15);
+  EXPECT_EQ(m.segments_without_ground_truth_start, 1);
+  const Json json = MetricsJson(m);
+  ASSERT_NE(json.FindPath({"object_pose", "segments_without_ground_truth_start"}), nullptr);
+  EXPECT_EQ(json.FindPath({"object_pose", "segments_without_ground_truth_start"})->number(), 1);
+  EXPECT_EQ(json.FindPath({"object_pose", "per_object", "5", "pairs"})->number(), 2);
+}
+
+// Object-centric: the L variables themselves, over the pairs (k−1, k) that have a motion H_k.
+// L at the truth (+1 m per frame) except L_2 at 2.5 m: pairs (0,1) E_t 0, (1,2) 0.5, (5,6) 0;
+// (4,5) has a motion but no L_4 variable and no L^gt_4 → not a pair. Mean 1/6.
+TEST(MetricsTest, ObjectCentricUsesTheObjectPoses) {
+  std::ostringstream text;
+  for (const int k : {1, 2, 5, 6}) text << "VERTEX_SE3:QUAT " << k << " 1 0 0 0 0 0 1\nLABEL_MOTION " << k << " 5 " << k << "\n";
+  for (const int k : {0, 1, 2, 5, 6}) {
+    text << "VERTEX_SE3:QUAT " << 10 + k << " " << (k == 2 ? 2.5 : k) << " 0 0 0 0 0 1\nLABEL_OBJECT_POSE "
+         << 10 + k << " 5 " << k << "\n";
+  }
+  std::istringstream in(text.str());
+  Expected<Graph> graph = ReadGraph(in, "oc.g2o");
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  GroundTruth gt;
+  for (const int k : {0, 1, 2, 5, 6}) {
+    gt.objects[{5, k}] = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), {double(k), 0, 0});
+  }
+  const Metrics m = ComputeMetrics(*graph, gt);
+  EXPECT_TRUE(m.object_centric);
+  EXPECT_EQ(m.object_pose.count, 3);
+  EXPECT_NEAR(m.object_pose.mean_trans_m, 0.5 / 3, 1e-15);
+  EXPECT_EQ(m.object_motion.count, 3);  // H_1, H_2, H_6 exact
+  EXPECT_NEAR(m.object_motion.mean_trans_m, 0, 1e-15);
+  // Object-centric metrics carry no segments_without_ground_truth_start (as the reference files).
+  EXPECT_EQ(MetricsJson(m).FindPath({"object_pose", "segments_without_ground_truth_start"}), nullptr);
+}
+
+// The same keys, recursively, as the reference (the shape of SPEC §5).
+void ExpectSameKeys(const Json& ours, const Json& reference, const std::string& path) {
+  std::set<std::string> mine, theirs;
+  for (const auto& [key, value] : ours.members()) mine.insert(key);
+  for (const auto& [key, value] : reference.members()) theirs.insert(key);
+  EXPECT_EQ(mine, theirs) << path;
+  for (const auto& [key, value] : reference.members()) {
+    const Json* member = ours.Find(key);
+    if (member != nullptr && value.is_object()) ExpectSameKeys(*member, value, path + key + ".");
+  }
+}
+
 // Every numeric leaf of the reference metrics equals ours (counts exactly, means to 1e-9).
 void ExpectSameNumbers(const Json& ours, const Json& reference, const std::string& path) {
   for (const auto& [key, value] : reference.members()) {
@@ -87,6 +173,7 @@ TEST_P(ReferenceMetricsTest, RecomputedFromTheSolutionMatchGtsamMetrics) {
   for (const char* family : {"camera", "object_motion", "object_pose"}) {
     ASSERT_NE(expected->Find(family), nullptr) << family;
     ExpectSameNumbers(*ours.Find(family), *expected->Find(family), std::string(family) + ".");
+    ExpectSameKeys(*ours.Find(family), *expected->Find(family), std::string(family) + ".");
   }
   EXPECT_EQ(ours.Find("object_centric")->boolean(), expected->Find("object_centric")->boolean());
 }
