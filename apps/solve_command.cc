@@ -51,6 +51,7 @@ int RunSolve(int argc, char** argv) {
   std::string out_dir;
   std::string gt_path;
   bool skip_unknown = false;
+  bool ceres_report = false;
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
                    "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).");
@@ -59,6 +60,8 @@ int RunSolve(int argc, char** argv) {
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2) for the metrics of SPEC §5", "GT");
   parser.AddFlag("skip-unknown-tags", &skip_unknown,
                  "skip lines with tags SPEC §1 does not know (counted and reported)");
+  parser.AddFlag("ceres-report", &ceres_report,
+                 "also print Ceres's full report (problem sizes, linear solver, time per phase)");
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
@@ -127,6 +130,7 @@ int RunSolve(int argc, char** argv) {
     return kExitFailed;
   }
   PrintSummary(outputs, out_dir);
+  if (ceres_report) std::printf("%s", report->ceres_report.c_str());
   if (outputs.metrics) {
     const Json& m = *outputs.metrics;
     std::printf("metrics (SPEC §5): camera %.4f deg %.4f m over %g pairs; object motion %.4f deg "

@@ -57,6 +57,7 @@ SolverFlags::SolverFlags(ArgParser* parser)
       function_tolerance_(defaults_.function_tolerance),
       gradient_tolerance_(defaults_.gradient_tolerance),
       parameter_tolerance_(defaults_.parameter_tolerance),
+      initial_lambda_(defaults_.initial_lambda),
       fix_first_(defaults_.fix_first),
       eliminate_object_points_(defaults_.eliminate_object_points) {
   parser->AddChoice("minimizer", &minimizer_, {"lm", "dogleg"},
@@ -74,6 +75,9 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "stop when the max-norm of the projected gradient is below this", 0, 1);
   parser->AddDouble("parameter-tolerance", &parameter_tolerance_,
                     "stop when the step is this small relative to the parameters", 0, 1);
+  parser->AddDouble("initial-lambda", &initial_lambda_,
+                    "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
+                    "radius)", 1e-16, 1e16);
   parser->AddFlag("eliminate-object-points", &eliminate_object_points_,
                   "Schur solvers: eliminate object-frame points first too (slower on the "
                   "reference scenes; static points are always eliminated first)");
@@ -96,6 +100,7 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   options->function_tolerance = function_tolerance_;
   options->gradient_tolerance = gradient_tolerance_;
   options->parameter_tolerance = parameter_tolerance_;
+  options->initial_lambda = initial_lambda_;
   options->fix_first = fix_first_;
   options->eliminate_object_points = eliminate_object_points_;
   return ParseRobust(robust_, options);

@@ -28,6 +28,7 @@ class SolverFlags {
   double function_tolerance_;
   double gradient_tolerance_;
   double parameter_tolerance_;
+  double initial_lambda_;
   bool fix_first_;
   bool eliminate_object_points_;
   std::string robust_;

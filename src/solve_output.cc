@@ -119,6 +119,7 @@ Json SolverJson(const SolverOptions& options) {
       .Set("function_tolerance", options.function_tolerance)
       .Set("gradient_tolerance", options.gradient_tolerance)
       .Set("parameter_tolerance", options.parameter_tolerance)
+      .Set("initial_lambda", options.initial_lambda)
       .Set("fix_first", options.fix_first)
       .Set("eliminate_object_points", options.eliminate_object_points)
       .Set("robust_kernels", std::move(kernels));

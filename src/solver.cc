@@ -93,6 +93,14 @@ class Assembly {
   std::shared_ptr<ceres::ParameterBlockOrdering> MakeOrdering(bool eliminate_object_points,
                                                               std::string* description);
   const std::vector<VertexId>& unused() const { return unused_; }
+  // The vertices in the problem, ascending, their blocks, and whether MakeOrdering puts them
+  // in the first (eliminated) group.
+  struct Variable {
+    VertexId id;
+    double* block;
+    bool eliminated_first;
+  };
+  std::vector<Variable> Variables(bool eliminate_object_points);
   // SPEC §1.7 --fix-first: holds the smallest-id pose that is in the problem constant.
   std::optional<VertexId> HoldFirstPoseConstant();
 
@@ -259,20 +267,31 @@ void Assembly::WriteBack(Graph* graph) const {
   }
 }
 
+std::vector<Assembly::Variable> Assembly::Variables(bool eliminate_object_points) {
+  std::vector<Variable> variables;
+  for (size_t i = 0; i < values_.size(); ++i) {
+    double* block = values_[i].data();
+    if (!problem_->HasParameterBlock(block)) continue;
+    const bool independent = types_[i] == VertexType::kPoint &&
+                             joined_points_.count(ids_[i]) == 0 &&
+                             (eliminate_object_points || roles_[i] != Role::kObjectPoint);
+    variables.push_back({ids_[i], block, independent});
+  }
+  std::sort(variables.begin(), variables.end(),
+            [](const Variable& a, const Variable& b) { return a.id < b.id; });
+  return variables;
+}
+
 std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(bool eliminate_object_points,
                                                                       std::string* description) {
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   int64_t first = 0;
   int64_t joined = 0;
-  for (size_t i = 0; i < values_.size(); ++i) {
-    double* block = values_[i].data();
-    if (!problem_->HasParameterBlock(block)) continue;
-    const bool is_point = types_[i] == VertexType::kPoint;
-    const bool independent = is_point && joined_points_.count(ids_[i]) == 0 &&
-                             (eliminate_object_points || roles_[i] != Role::kObjectPoint);
-    joined += is_point && !independent;  // joined by motion edges, or object-frame points
-    first += independent;
-    ordering->AddElementToGroup(block, independent ? 0 : 1);
+  for (const Variable& v : Variables(eliminate_object_points)) {
+    const bool is_point = problem_->ParameterBlockSize(v.block) == kPointSize;
+    joined += is_point && !v.eliminated_first;  // joined by motion edges, or object-frame points
+    first += v.eliminated_first;
+    ordering->AddElementToGroup(v.block, v.eliminated_first ? 0 : 1);
   }
   if (first == 0) {
     *description = "no point can be eliminated first; Ceres chose an independent set";
@@ -310,6 +329,7 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
   o.function_tolerance = options.function_tolerance;
   o.gradient_tolerance = options.gradient_tolerance;
   o.parameter_tolerance = options.parameter_tolerance;
+  o.initial_trust_region_radius = 1.0 / options.initial_lambda;
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
   return o;
@@ -360,6 +380,9 @@ class ConvergenceRecorder : public ceres::IterationCallback {
 Status CheckOptions(const SolverOptions& options) {
   if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
   if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
+  if (!(options.initial_lambda > 0) || !std::isfinite(1.0 / options.initial_lambda)) {
+    return Error{"", 0, "initial_lambda must be positive and its inverse finite"};
+  }
   const ceres::SparseLinearAlgebraLibraryType library =
       options.sparse_backend == SparseBackend::kEigen ? ceres::EIGEN_SPARSE : ceres::SUITE_SPARSE;
   if (options.linear_solver != LinearSolverType::kDenseSchur &&
@@ -395,6 +418,31 @@ Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& optio
   Expected<std::unique_ptr<Assembly>> assembly = Assembly::Build(graph, options);
   if (!assembly.ok()) return assembly.error();
   return (*assembly)->Evaluate();
+}
+
+Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOptions& options) {
+  Expected<std::unique_ptr<Assembly>> built = Assembly::Build(graph, options);
+  if (!built.ok()) return built.error();
+  Assembly& assembly = **built;
+  SystemJacobian out;
+  ceres::Problem::EvaluateOptions evaluate_options;
+  out.first_column.push_back(0);
+  for (const Assembly::Variable& v : assembly.Variables(options.eliminate_object_points)) {
+    evaluate_options.parameter_blocks.push_back(v.block);
+    out.variables.push_back(v.id);
+    out.eliminated_first.push_back(v.eliminated_first);
+    out.first_column.push_back(out.first_column.back() +
+                               assembly.problem().ParameterBlockTangentSize(v.block));
+  }
+  ceres::CRSMatrix crs;
+  double cost = 0;
+  assembly.problem().Evaluate(evaluate_options, &cost, nullptr, nullptr, &crs);
+  out.jacobian.resize(crs.num_rows, crs.num_cols);
+  out.jacobian.resizeNonZeros(static_cast<Eigen::Index>(crs.values.size()));
+  std::copy(crs.rows.begin(), crs.rows.end(), out.jacobian.outerIndexPtr());
+  std::copy(crs.cols.begin(), crs.cols.end(), out.jacobian.innerIndexPtr());
+  std::copy(crs.values.begin(), crs.values.end(), out.jacobian.valuePtr());
+  return out;
 }
 
 Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
@@ -441,14 +489,8 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
   // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
   // ordering only limits the fill-reducing ordering.
   if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {
-    // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
-  // ordering only limits the fill-reducing ordering.
-  if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {
     ceres_options.linear_solver_ordering =
         assembly.MakeOrdering(options.eliminate_object_points, &report.eliminated_first);
-  } else {
-    report.eliminated_first = "none: sparse Cholesky orders all variables to reduce fill";
-  }
   } else {
     report.eliminated_first = "none: sparse Cholesky orders all variables to reduce fill";
   }
@@ -469,6 +511,7 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
       [](const StepRecord& row) { return row.accepted; }));
   report.usable = summary.IsSolutionUsable();
   report.termination_detail = summary.message;
+  report.ceres_report = summary.FullReport();
   switch (summary.termination_type) {
     case ceres::CONVERGENCE: report.termination = "convergence"; break;
     case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;

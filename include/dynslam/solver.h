@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "dynslam/graph.h"
 #include "dynslam/status.h"
 
@@ -54,6 +56,8 @@ struct SolverOptions {
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
+  // The first LM damping (Ceres: 1 / initial_trust_region_radius; its default is 1e-4).
+  double initial_lambda = 1e-4;
   // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
   // system dense per segment (3× slower linear solves on kitti_0003 oc_b, docs/SOLVER.md).
@@ -97,6 +101,7 @@ struct SolveReport {
   int steps = 0;       // linear solves Ceres reported
   std::string termination;         // "convergence", "no_convergence", "failure"
   std::string termination_detail;  // Ceres's message
+  std::string ceres_report;        // Ceres's Summary::FullReport() (problem sizes, phase times)
   bool usable = false;             // Ceres says the solution is usable
   double time_total_s = 0;              // ceres::Solve, preprocessing included
   double time_minimizer_s = 0;
@@ -112,6 +117,20 @@ struct SolveReport {
 // The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
 // Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
 Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options = {});
+
+// The Jacobian of the whitened residuals (SPEC §1.5) at the graph's values, taken in the
+// tangent space of each variable (6 columns for a pose, [ω; ρ] as SE3Manifold; 3 for a point),
+// as the solver sees it. Columns are grouped by variable in ascending vertex id; vertices in no
+// edge have no columns. For analysis and benchmarks (the factorisation floor of
+// docs/BENCHMARKS.md).
+struct SystemJacobian {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> jacobian;
+  std::vector<VertexId> variables;  // the vertex of each column group, ascending
+  std::vector<int> first_column;    // first column of each group (size = variables.size() + 1)
+  // The groups the Schur solvers eliminate first with `options` (SolveReport::eliminated_first).
+  std::vector<bool> eliminated_first;
+};
+Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOptions& options = {});
 
 // Solves and writes the solution into `graph`'s vertices. An Error means nothing was solved
 // (gauge freedom, invalid options, a malformed graph); a solve that ran but failed returns a
