@@ -1,8 +1,15 @@
 // dynslam compare FRONTEND.g2o --gt GT --out DIR [--formulations wc,oc_a,…] [options]
 //
 // Builds every formulation from one front-end file (identical data, SPEC §3), solves each the
-// same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side.
+// same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side,
+// then draws the convergence (Fig. 4) and trajectory plots with scripts/plot_*.py.
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -21,6 +28,12 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "solver_flags.h"
+
+// The repository's scripts/ folder, set by apps/CMakeLists.txt; the environment variable of the
+// same name overrides it at run time (a moved or installed tree).
+#ifndef DYNSLAM_SCRIPTS_DIR
+#define DYNSLAM_SCRIPTS_DIR ""
+#endif
 
 namespace dynslam::cli {
 namespace {
@@ -104,21 +117,136 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
   *csv = out.str();
 }
 
+// Runs args[0] (an absolute path, no shell: paths may hold spaces or quotes) with stdin from
+// /dev/null and stdout and stderr captured in *output. Returns its exit code, or -1 when it could
+// not be started or did not exit normally.
+int RunCaptured(const std::vector<std::string>& args, std::string* output) {
+  std::vector<char*> argv;
+  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  argv.push_back(nullptr);
+  int pipe_fds[2];
+  if (pipe(pipe_fds) != 0) return -1;
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(pipe_fds[0]);
+    close(pipe_fds[1]);
+    return -1;
+  }
+  if (pid == 0) {  // the child: async-signal-safe calls only until exec
+    close(pipe_fds[0]);
+    dup2(pipe_fds[1], STDOUT_FILENO);
+    dup2(pipe_fds[1], STDERR_FILENO);
+    close(pipe_fds[1]);
+    const int null = open("/dev/null", O_RDONLY);
+    if (null >= 0) dup2(null, STDIN_FILENO);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(pipe_fds[1]);
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(pipe_fds[0], buffer, sizeof(buffer));
+    if (n > 0) {
+      output->append(buffer, static_cast<size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  close(pipe_fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The last non-blank line of a script's output: the error message of a failed script.
+std::string LastLine(const std::string& text) {
+  const size_t end = text.find_last_not_of(" \t\r\n");
+  if (end == std::string::npos) return "no message";
+  const size_t newline = text.find_last_of('\n', end);
+  const size_t start = newline == std::string::npos ? 0 : newline + 1;
+  return text.substr(start, end + 1 - start);
+}
+
+// DIR/convergence.png (every formulation's convergence.csv on one figure) and DIR/trajectory.png
+// (every formulation's cameras and object poses with the ground truth). Plots are a convenience:
+// a missing python3 or matplotlib, or a failing script, is one warning line, not a failure.
+void DrawPlots(const std::string& out_dir, const std::vector<Row>& rows, const std::string& gt_path,
+               const std::string& title) {
+  const std::string python = "/usr/bin/python3";
+  if (access(python.c_str(), X_OK) != 0) {
+    std::cerr << "warning: no " << python << ", so no convergence.png or trajectory.png\n";
+    return;
+  }
+  std::string output;
+  if (RunCaptured({python, "-c", "import matplotlib"}, &output) != 0) {
+    std::cerr << "warning: " << python << " cannot import matplotlib (Debian: python3-matplotlib), "
+              << "so no convergence.png or trajectory.png\n";
+    return;
+  }
+  const char* from_environment = std::getenv("DYNSLAM_SCRIPTS_DIR");
+  const fs::path scripts = from_environment && *from_environment ? from_environment
+                                                                 : DYNSLAM_SCRIPTS_DIR;
+  std::error_code ec;
+  const fs::path out = fs::absolute(out_dir, ec);  // absolute: no path can look like an option
+  const std::string gt = fs::absolute(gt_path, ec).string();
+  std::vector<std::string> labels;
+  for (const Row& row : rows) labels.push_back(FormulationName(row.formulation));
+
+  auto draw = [&](const char* script, const char* image, const char* file_in_folder,
+                  std::vector<std::string> extra) {
+    const fs::path script_path = scripts / script;
+    if (!fs::is_regular_file(script_path, ec)) {
+      std::cerr << "warning: no " << script_path.string() << " (DYNSLAM_SCRIPTS_DIR), so no "
+                << image << "\n";
+      return;
+    }
+    std::vector<std::string> args = {python, script_path.string()};
+    for (const std::string& label : labels) {
+      const fs::path folder = out / label;
+      args.push_back((*file_in_folder ? folder / file_in_folder : folder).string());
+    }
+    args.push_back("--labels");
+    args.insert(args.end(), labels.begin(), labels.end());
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.push_back("--out");
+    args.push_back((out / image).string());
+    output.clear();
+    const int code = RunCaptured(args, &output);
+    if (code != 0) {
+      std::cerr << "warning: " << script << " failed (exit " << code << "), so no " << image
+                << ": " << LastLine(output) << "\n";
+      return;
+    }
+    std::fprintf(stderr, "[compare] wrote %s\n", (out / image).string().c_str());
+  };
+  draw("plot_convergence.py", "convergence.png", "convergence.csv",
+       {"--title", title + ": convergence (Fig. 4)"});
+  draw("plot_trajectory.py", "trajectory.png", "",
+       {"--gt", gt, "--title", title + ": trajectories (top view, x-z)"});
+}
+
 }  // namespace
 
 int RunCompare(int argc, char** argv) {
   std::string front_end_path, gt_path, out_dir, formulation_list = "wc,oc_a,oc_b,oc_c";
+  bool no_plots = false;
   ArgParser parser(
       "dynslam compare FRONTEND.g2o --gt GT --out DIR [options]",
       "Builds every formulation from one front-end file (identical data), solves each with the\n"
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
-      "full solve output (SPEC §4).");
+      "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png\n"
+      "and DIR/trajectory.png (scripts/plot_convergence.py, scripts/plot_trajectory.py).");
   parser.AddPositional("FRONTEND.g2o", &front_end_path, "front-end graph file");
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2), required", "GT");
   parser.AddString("out", &out_dir, "output directory, required", "DIR");
   parser.AddString("formulations", &formulation_list, "comma-separated subset of wc,oc_a,oc_b,oc_c",
                    "LIST");
+  parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png and DIR/trajectory.png");
   BuildFlags build_flags(&parser);
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
@@ -221,6 +349,9 @@ int RunCompare(int argc, char** argv) {
   std::ofstream(fs::path(out_dir) / "tables.md") << markdown;
   std::ofstream(fs::path(out_dir) / "tables.csv") << csv;
   std::fputs(markdown.c_str(), stdout);
+  if (!no_plots) {
+    DrawPlots(out_dir, rows, gt_path, fs::path(front_end_path).filename().string());
+  }
   return kExitOk;
 }
 

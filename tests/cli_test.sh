@@ -63,6 +63,29 @@ check "solve" 0 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --gt "$data/syn
 for file in solution.g2o cameras.csv motions.csv object_poses.csv convergence.csv summary.json; do
   if [ -s "$work/wc/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: solve wrote no $file"; fi
 done
+# scripts/plot_trajectory.py on that solve output; bad input is file:line and exit 1, no traceback.
+if /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1; then
+  plot="$root/scripts/plot_trajectory.py"
+  check "plot_trajectory" 0 "$plot" "$work/wc" --gt "$data/synthetic/gt.txt" --labels wc --out "$work/trajectory.png"
+  if [ -s "$work/trajectory.png" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: plot_trajectory wrote no PNG"; fi
+  mkdir -p "$work/bad csv"
+  cp "$work/wc/cameras.csv" "$work/wc/object_poses.csv" "$work/bad csv/"
+  sed -i '3s/.*/1,0.1,zero,0.3,0,0,0,1/' "$work/bad csv/cameras.csv"
+  check "plot_trajectory: malformed cameras.csv" 1 "$plot" "$work/bad csv" --out "$work/bad.png"
+  expect_output "malformed cameras.csv names file and line" "bad csv/cameras.csv:3: field 'zero' is not a finite number"
+  if grep -q Traceback "$work/out"; then failed=$((failed + 1)); echo "FAIL: plot_trajectory printed a traceback"; else passed=$((passed + 1)); fi
+  check "compare draws its plots" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare" --formulations wc
+  for file in convergence.png trajectory.png; do
+    if [ -s "$work/compare/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: compare drew no $file"; fi
+  done
+else
+  echo "SKIP: plot cases (/usr/bin/python3 cannot import matplotlib)"
+fi
+check "compare without the plot scripts warns and succeeds" 0 env DYNSLAM_SCRIPTS_DIR="$work/none" "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_noscripts" --formulations wc
+expect_output "missing plot scripts give a warning" "^warning: "
+check "compare --no-plots" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_noplots" --formulations wc --no-plots
+if grep -q "^warning: " "$work/out" || [ -e "$work/compare_noplots/trajectory.png" ]; then failed=$((failed + 1)); echo "FAIL: compare --no-plots plotted or warned"; else passed=$((passed + 1)); fi
+
 check "verify against GTSAM tight_exact" 0 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact"
 expect_output "verify passes" "^PASS"
 check "verify beyond tolerance exits 1" 1 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact" --translation-tolerance 1e-12
