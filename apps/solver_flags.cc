@@ -58,6 +58,7 @@ SolverFlags::SolverFlags(ArgParser* parser)
       gradient_tolerance_(defaults_.gradient_tolerance),
       parameter_tolerance_(defaults_.parameter_tolerance),
       initial_lambda_(defaults_.initial_lambda),
+      nonmonotonic_steps_(defaults_.nonmonotonic_steps),
       fix_first_(defaults_.fix_first),
       eliminate_object_points_(defaults_.eliminate_object_points) {
   parser->AddChoice("minimizer", &minimizer_, {"lm", "dogleg"},
@@ -78,6 +79,10 @@ SolverFlags::SolverFlags(ArgParser* parser)
   parser->AddDouble("initial-lambda", &initial_lambda_,
                     "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
                     "radius)", 1e-16, 1e16);
+  parser->AddInt("nonmonotonic-steps", &nonmonotonic_steps_,
+                 "accept up to N consecutive steps that raise the cost (Ceres's non-monotonic "
+                 "steps); -1: 5 when the graph has kinematic edges (oc_b, oc_c), else 0",
+                 -1, 1000);
   parser->AddFlag("eliminate-object-points", &eliminate_object_points_,
                   "Schur solvers: eliminate object-frame points first too (slower on the "
                   "reference scenes; static points are always eliminated first)");
@@ -101,6 +106,7 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   options->gradient_tolerance = gradient_tolerance_;
   options->parameter_tolerance = parameter_tolerance_;
   options->initial_lambda = initial_lambda_;
+  options->nonmonotonic_steps = static_cast<int>(nonmonotonic_steps_);
   options->fix_first = fix_first_;
   options->eliminate_object_points = eliminate_object_points_;
   return ParseRobust(robust_, options);

@@ -29,6 +29,7 @@ class SolverFlags {
   double gradient_tolerance_;
   double parameter_tolerance_;
   double initial_lambda_;
+  int64_t nonmonotonic_steps_;
   bool fix_first_;
   bool eliminate_object_points_;
   std::string robust_;

@@ -100,7 +100,7 @@ const char* KernelName(RobustKernel::Type type) {
   return "?";
 }
 
-Json SolverJson(const SolverOptions& options) {
+Json SolverJson(const SolverOptions& options, const SolveReport& report) {
   Json kernels = Json::Object();
   for (const EdgeKind kind : kAllEdgeKinds) {
     const RobustKernel& kernel = options.kernels[static_cast<int>(kind)];
@@ -120,6 +120,7 @@ Json SolverJson(const SolverOptions& options) {
       .Set("gradient_tolerance", options.gradient_tolerance)
       .Set("parameter_tolerance", options.parameter_tolerance)
       .Set("initial_lambda", options.initial_lambda)
+      .Set("nonmonotonic_steps", report.nonmonotonic_steps)
       .Set("fix_first", options.fix_first)
       .Set("eliminate_object_points", options.eliminate_object_points)
       .Set("robust_kernels", std::move(kernels));
@@ -200,7 +201,7 @@ Json SummaryJson(const SolveOutputs& outputs) {
                          .Set("linear_solve", report.time_linear_solver_s))
       .Set("schur_ordering", report.eliminated_first)
       .Set("held_constant", std::move(held))
-      .Set("solver", SolverJson(*outputs.options))
+      .Set("solver", SolverJson(*outputs.options, report))
       .Set("warnings", std::move(warnings));
   if (outputs.metrics) summary.Set("metrics", *outputs.metrics);
   return summary;

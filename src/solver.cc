@@ -304,7 +304,14 @@ std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(bool elimi
   return ordering;
 }
 
-ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
+// The number of consecutive non-monotonic steps Ceres may take (0: monotonic), with the auto
+// rule of SolverOptions::nonmonotonic_steps.
+int NonmonotonicSteps(const SolverOptions& options, const Graph& graph) {
+  if (options.nonmonotonic_steps >= 0) return options.nonmonotonic_steps;
+  return graph.kinematic_edges.empty() ? 0 : 5;
+}
+
+ceres::Solver::Options MakeCeresOptions(const SolverOptions& options, const Graph& graph) {
   ceres::Solver::Options o;
   o.minimizer_type = ceres::TRUST_REGION;
   o.trust_region_strategy_type = options.minimizer == MinimizerType::kDogleg
@@ -330,6 +337,9 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
   o.gradient_tolerance = options.gradient_tolerance;
   o.parameter_tolerance = options.parameter_tolerance;
   o.initial_trust_region_radius = 1.0 / options.initial_lambda;
+  const int nonmonotonic_steps = NonmonotonicSteps(options, graph);
+  o.use_nonmonotonic_steps = nonmonotonic_steps > 0;
+  if (o.use_nonmonotonic_steps) o.max_consecutive_nonmonotonic_steps = nonmonotonic_steps;
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
   return o;
@@ -380,6 +390,9 @@ class ConvergenceRecorder : public ceres::IterationCallback {
 Status CheckOptions(const SolverOptions& options) {
   if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
   if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
+  if (options.nonmonotonic_steps < -1) {
+    return Error{"", 0, "nonmonotonic_steps must be -1 (auto), 0 (off) or a positive count"};
+  }
   if (!(options.initial_lambda > 0) || !std::isfinite(1.0 / options.initial_lambda)) {
     return Error{"", 0, "initial_lambda must be positive and its inverse finite"};
   }
@@ -485,7 +498,8 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
     if (Status status = assembly.CheckFinite(kind); !status.ok()) return status.error();
   }
 
-  ceres::Solver::Options ceres_options = MakeCeresOptions(options);
+  ceres::Solver::Options ceres_options = MakeCeresOptions(options, *graph);
+  report.nonmonotonic_steps = NonmonotonicSteps(options, *graph);
   // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
   // ordering only limits the fill-reducing ordering.
   if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {

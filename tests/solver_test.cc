@@ -130,6 +130,46 @@ TEST(SolverTest, HuberKernelLowersTheCostOfALargeResidual) {
               0.5 * (2 * 0.01 * std::sqrt(squared_norm) - 0.01 * 0.01), 1e-15);
 }
 
+// Two object poses (2, 3) joined by a kinematic edge, as in oc_b and oc_c graphs.
+constexpr char kObjectCentric[] =
+    "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
+    "VERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\n"
+    "VERTEX_SE3:QUAT 2 0 0 5 0 0 0 1\n"
+    "VERTEX_SE3:QUAT 3 0 0 6 0 0 0 1\n"
+    "VERTEX_SE3:QUAT 4 0 0 1 0 0 0 1\n"
+    "VERTEX_TRACKXYZ 5 0 1 0\n"
+    "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n"
+    "EDGE_SE3_PRIOR 2 0 0 5 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n"
+    "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n"
+    "EDGE_SE3_OBJ_TRACKXYZ 0 2 5 0 1 5 1 0 0 1 0 1\n"
+    "EDGE_SE3_OBJ_TRACKXYZ 1 3 5 -1 1 6 1 0 0 1 0 1\n"
+    "EDGE_SE3_OBJ_MOTION 2 3 4 5 1 0 0 1 0 1\n"
+    "EDGE_SE3_OBJ_KINEMATIC 2 3 4 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n";
+
+TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithKinematicEdges) {
+  Graph object_centric = Read(kObjectCentric);
+  ASSERT_FALSE(object_centric.kinematic_edges.empty());
+  Expected<SolveReport> report = Solve(SolverOptions{}, &object_centric);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->nonmonotonic_steps, 5);
+
+  Graph pose_graph = Read(kTwoPoses);
+  report = Solve(SolverOptions{}, &pose_graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->nonmonotonic_steps, 0);
+
+  SolverOptions options;
+  options.nonmonotonic_steps = 2;
+  pose_graph = Read(kTwoPoses);
+  report = Solve(options, &pose_graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->nonmonotonic_steps, 2);
+  EXPECT_LT(report->final_cost, 1e-20);
+
+  options.nonmonotonic_steps = -2;
+  EXPECT_FALSE(Solve(options, &pose_graph).ok());
+}
+
 TEST(SolverTest, NamesRoundTrip) {
   for (const char* name : {"sparse_schur", "sparse_normal_cholesky", "iterative_schur",
                            "dense_schur"}) {

@@ -58,6 +58,11 @@ struct SolverOptions {
   double parameter_tolerance = 1e-12;
   // The first LM damping (Ceres: 1 / initial_trust_region_radius; its default is 1e-4).
   double initial_lambda = 1e-4;
+  // Ceres's non-monotonic steps: accept a step that raises the cost when the cost is still below
+  // the best of the last N accepted steps. −1 (auto): N = 5 when the graph has kinematic edges
+  // (oc_b, oc_c), where it takes 3–5× fewer steps to the optimum on KITTI scenes, else 0 (off:
+  // on synthetic oc_a it never settles within 500 steps). docs/SOLVER.md has the measurements.
+  int nonmonotonic_steps = -1;
   // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
   // system dense per segment (3× slower linear solves on kitti_0003 oc_b, docs/SOLVER.md).
@@ -109,6 +114,7 @@ struct SolveReport {
   double time_linear_solver_s = 0;
   double time_preprocessor_s = 0;
   std::string eliminated_first;         // what the Schur ordering put in the first group
+  int nonmonotonic_steps = 0;           // as used (SolverOptions::nonmonotonic_steps resolved)
   std::vector<VertexId> held_constant;  // unused vertices and, with fix_first, the first pose
   std::vector<StepRecord> convergence;
   std::vector<std::string> warnings;
