@@ -52,6 +52,7 @@ class Builder {
   Status FindTracklets();
   Status FindSegments();
   void ReportDrops();
+  void WarnUnderdeterminedMotions();
 
   bool Kept(const Tracklet& t) const {
     auto it = segment_of_.find(&t);
@@ -228,6 +229,33 @@ Status Builder::FindSegments() {
   return Status::Ok();
 }
 
+// A rigid motion needs three non-collinear points: a kept motion that fewer than three point
+// pairs (motion edges) of its segment support is fixed only through the smoothing (and, oc_b/oc_c,
+// kinematic) edges. Named per segment before solving; the segment is kept (SPEC §3.1 keeps it).
+void Builder::WarnUnderdeterminedMotions() {
+  if (report_ == nullptr) return;
+  constexpr int64_t kPointsForARigidMotion = 3;
+  for (const Segment& s : segments_) {
+    if (!s.kept) continue;
+    std::map<int64_t, int64_t> pairs_at;  // frame k → motion edges (k−1, k)
+    for (const Tracklet* t : s.tracklets) {
+      for (const MotionEdge* e : t->edges) ++pairs_at[e->frame];
+    }
+    int64_t weak = 0, first_weak = -1;
+    for (int64_t k = s.first + 1; k <= s.last; ++k) {
+      if (pairs_at[k] >= kPointsForARigidMotion) continue;
+      if (weak++ == 0) first_weak = k;
+    }
+    if (weak == 0) continue;
+    report_->warnings.push_back(
+        "object " + std::to_string(s.object) + " frames " + std::to_string(s.first) + ".." +
+        std::to_string(s.last) + ": " + Count(weak, "of its") + " " +
+        Count(s.last - s.first, "motions") + " rest on fewer than 3 tracked points (first: frame " +
+        std::to_string(first_weak) + ", " + Count(pairs_at[first_weak], "points") +
+        "); the data cannot determine them, only smoothing and kinematic edges do");
+  }
+}
+
 void Builder::ReportDrops() {
   std::set<int64_t> objects;
   int64_t dynamic_points = 0, dynamic_tracklets = 0, statics = 0, length_one = 0, kept_segments = 0;
@@ -317,6 +345,7 @@ Status Builder::Analyse() {
   if (Status s = FindTracklets(); !s.ok()) return s;
   if (Status s = FindSegments(); !s.ok()) return s;
   ReportDrops();
+  WarnUnderdeterminedMotions();
   return Status::Ok();
 }
 

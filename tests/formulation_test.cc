@@ -310,6 +310,24 @@ TEST(FormulationEdgeCaseTest, UnlabelledFileTwoSegmentsAndATrackletOfLengthOne) 
             (std::array<int64_t, kNumEdgeKinds>{1, 6, 3, 2, 0, 0, 14, 10, 5, 2}));
 }
 
+// Two tracked points per frame cannot fix a rigid motion: each kept segment is named before
+// solving (issue 14), and kept as SPEC §3.1 says.
+TEST(FormulationEdgeCaseTest, MotionsOnFewerThanThreePointsAreNamed) {
+  const Graph front_end = ReadText(UnlabelledFrontEnd());
+  BuildOptions options;
+  options.min_object_frames = 3;
+  BuildReport report;
+  ASSERT_TRUE(BuildFormulation(front_end, Formulation::kObjectCentricB, options, nullptr, &report,
+                               "frontend.g2o")
+                  .ok());
+  ASSERT_EQ(report.warnings.size(), 2u);
+  EXPECT_EQ(report.warnings[0],
+            "object 9 frames 0..2: 2 of its 2 motions rest on fewer than 3 tracked points (first: "
+            "frame 1, 2 points); the data cannot determine them, only smoothing and kinematic "
+            "edges do");
+  EXPECT_EQ(report.warnings[1].rfind("object 9 frames 3..6: 3 of its 3 motions", 0), 0u);
+}
+
 TEST(FormulationEdgeCaseTest, SegmentsShorterThanMinObjectFramesAreDroppedEverywhere) {
   const Graph front_end = ReadText(UnlabelledFrontEnd());
   BuildReport report;
