@@ -52,6 +52,7 @@ int RunSolve(int argc, char** argv) {
   std::string gt_path;
   bool skip_unknown = false;
   bool ceres_report = false;
+  bool repair_information = false;
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
                    "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).");
@@ -60,6 +61,9 @@ int RunSolve(int argc, char** argv) {
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2) for the metrics of SPEC §5", "GT");
   parser.AddFlag("skip-unknown-tags", &skip_unknown,
                  "skip lines with tags SPEC §1 does not know (counted and reported)");
+  parser.AddFlag("repair-information", &repair_information,
+                 "replace an information matrix that is not positive definite by the nearest one "
+                 "with eigenvalues >= 1e-9 x the largest (each repaired line is reported)");
   parser.AddFlag("ceres-report", &ceres_report,
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
   SolverFlags solver_flags(&parser);
@@ -82,6 +86,7 @@ int RunSolve(int argc, char** argv) {
 
   ReadOptions read_options;
   read_options.skip_unknown_tags = skip_unknown;
+  read_options.repair_information = repair_information;
   compat.Apply(&read_options);
   ReadReport read_report;
   Expected<Graph> graph = ReadGraph(graph_path, read_options, &read_report);
@@ -100,6 +105,11 @@ int RunSolve(int argc, char** argv) {
   }
   SolveOutputs outputs;
   outputs.input = graph_path;
+  if (const std::vector<int64_t>& lines = read_report.repaired_information_lines; !lines.empty()) {
+    outputs.warnings.push_back("--repair-information: repaired the information matrices of " +
+                               std::to_string(lines.size()) + " edges (first: " + graph_path +
+                               ":" + std::to_string(lines.front()) + ")");
+  }
   for (const auto& [tag, count] : read_report.skipped_tags) {
     outputs.warnings.push_back("skipped " + std::to_string(count) + " lines with unknown tag " + tag);
   }

@@ -79,10 +79,12 @@ const char* kFormulationNames[] = {"frontend", "wc", "oc_a", "oc_b", "oc_c"};
 // One line being parsed: its fields after the tag, and errors that name file, line and tag.
 class LineParser {
  public:
+  // `repaired`: null, or a count of information matrices repaired (ReadOptions).
   LineParser(const std::string& file, int64_t line, std::string_view tag,
-             const std::vector<std::string_view>& fields, bool permute_information)
+             const std::vector<std::string_view>& fields, bool permute_information,
+             int64_t* repaired)
       : file_(file), line_(line), tag_(tag), fields_(fields),
-        permute_information_(permute_information) {}
+        permute_information_(permute_information), repaired_(repaired) {}
 
   size_t size() const { return fields_.size(); }
 
@@ -155,19 +157,10 @@ class LineParser {
     return true;
   }
 
-  // Upper triangle, row by row, of an N×N symmetric positive definite matrix.
+  // Fails with the reason unless `m` is numerically positive definite.
   template <int N>
-  bool ReadInformation(size_t first, Eigen::Matrix<double, N, N>* information, Error* error) const {
-    Eigen::Matrix<double, N, N> m;
-    size_t k = first;
-    for (int r = 0; r < N; ++r) {
-      for (int c = r; c < N; ++c) {
-        if (!Number(k++, &m(r, c), error)) return false;
-        m(c, r) = m(r, c);
-      }
-    }
-    const std::string where = "the information matrix (fields " + std::to_string(first + 1) +
-                              " to " + std::to_string(k) + ")";
+  bool IsPositiveDefinite(const Eigen::Matrix<double, N, N>& m, const std::string& where,
+                          Error* error) const {
     Eigen::LLT<Eigen::Matrix<double, N, N>> llt(m);
     if (llt.info() != Eigen::Success || !(m.diagonal().array() > 0).all()) {
       *error = Fail(where + " is not symmetric positive definite");
@@ -199,6 +192,44 @@ class LineParser {
       *error = Fail(where + " is numerically singular, not symmetric positive definite" + numbers);
       return false;
     }
+    return true;
+  }
+
+  // ReadOptions::repair_information: the nearest symmetric matrix (Frobenius norm) whose
+  // eigenvalues are at least kRepairFloor × the largest. False when there is nothing to keep
+  // (no positive eigenvalue, or a non-finite entry).
+  template <int N>
+  static bool Repair(Eigen::Matrix<double, N, N>* m) {
+    if (!m->allFinite()) return false;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(*m);
+    if (eigen.info() != Eigen::Success) return false;
+    const double lambda_max = eigen.eigenvalues()(N - 1);
+    if (!(lambda_max > 0) || !std::isfinite(lambda_max)) return false;
+    const Eigen::Matrix<double, N, 1> clamped =
+        eigen.eigenvalues().cwiseMax(kRepairFloor * lambda_max);
+    *m = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+    *m = (0.5 * (*m + m->transpose())).eval();
+    return true;
+  }
+  static constexpr double kRepairFloor = 1e-9;
+
+  // Upper triangle, row by row, of an N×N symmetric positive definite matrix.
+  template <int N>
+  bool ReadInformation(size_t first, Eigen::Matrix<double, N, N>* information, Error* error) const {
+    Eigen::Matrix<double, N, N> m;
+    size_t k = first;
+    for (int r = 0; r < N; ++r) {
+      for (int c = r; c < N; ++c) {
+        if (!Number(k++, &m(r, c), error)) return false;
+        m(c, r) = m(r, c);
+      }
+    }
+    const std::string where = "the information matrix (fields " + std::to_string(first + 1) +
+                              " to " + std::to_string(k) + ")";
+    if (!IsPositiveDefinite(m, where, error)) {
+      if (repaired_ == nullptr || !Repair(&m)) return false;
+      ++*repaired_;
+    }
     *information = m;
     return true;
   }
@@ -222,6 +253,7 @@ class LineParser {
   std::string_view tag_;
   const std::vector<std::string_view>& fields_;
   bool permute_information_;
+  int64_t* repaired_;
 };
 
 struct PendingLabel {
@@ -246,7 +278,11 @@ class Reader {
       if (fields.empty()) continue;
       const std::string_view tag = fields.front();
       fields.erase(fields.begin());
+      const int64_t repaired_before = repaired_;
       if (Status s = ParseLine(number, tag, fields); !s.ok()) return s.error();
+      if (repaired_ != repaired_before && report_ != nullptr) {
+        report_->repaired_information_lines.push_back(number);
+      }
     }
     if (in.bad()) return Error{name_, number, "reading failed"};
     if (report_ != nullptr) report_->lines = number;
@@ -283,7 +319,8 @@ class Reader {
 
   Status ParseLine(int64_t line, std::string_view tag_name, const std::vector<std::string_view>& f) {
     const Tag tag = LookUp(tag_name);
-    LineParser p(name_, line, tag_name, f, !options_.information_in_tangent_order);
+    LineParser p(name_, line, tag_name, f, !options_.information_in_tangent_order,
+                 options_.repair_information ? &repaired_ : nullptr);
     Error error;
     switch (tag) {
       case Tag::kUnknown: {
@@ -603,6 +640,7 @@ class Reader {
   const std::string& name_;
   const ReadOptions& options_;
   ReadReport* report_;
+  int64_t repaired_ = 0;  // information matrices repaired (ReadOptions::repair_information)
   Graph graph_;
   std::vector<PendingLabel> labels_;
   int64_t formulation_line_ = 0;

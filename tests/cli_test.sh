@@ -55,6 +55,12 @@ check "gauge freedom refused" 2 "$dynslam" solve "$work/noprior.g2o" --out "$wor
 expect_output "gauge freedom explained" "fix-first"
 check "gauge fixed with --fix-first" 0 "$dynslam" solve "$work/noprior.g2o" --out "$work/fixed" --fix-first
 
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_TRACKXYZ 1 0 0 1\nEDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\nEDGE_SE3_TRACKXYZ 0 1 0 0 1 1 0 0 -1 0 1\n' >"$work/indefinite.g2o"
+check "indefinite information refused" 2 "$dynslam" solve "$work/indefinite.g2o" --out "$work/x"
+expect_output "indefinite information names file and line" "indefinite.g2o:4: EDGE_SE3_TRACKXYZ: the information matrix (fields 6 to 11) is not symmetric positive definite"
+check "indefinite information repaired on request" 0 "$dynslam" solve "$work/indefinite.g2o" --out "$work/repaired" --repair-information
+expect_output "repair reported" "^warning: --repair-information: repaired the information matrices of 1 edges (first: .*indefinite.g2o:4)"
+
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n' >"$work/no_edges.g2o"
 check "a graph with no edges is refused" 2 "$dynslam" solve "$work/no_edges.g2o" --out "$work/x" --fix-first
 expect_output "no edges explained" "nothing to solve"

@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "dynslam/json.h"
@@ -287,6 +288,37 @@ TEST(GraphIoBadInputTest, NumericallySingularInformationIsRejected) {
   // Asymmetry cannot be written (upper triangle only); a negative diagonal can.
   ExpectError(kPose0 + "VERTEX_TRACKXYZ 1 0 0 1\nEDGE_SE3_TRACKXYZ 0 1 0 0 1 -1 0 0 1 0 1\n", 3,
               "fields 6 to 11");
+}
+
+// ReadOptions::repair_information: diag(1, [1 0.7; 0.7 0.49]) (eigenvalues 0, 1, 1.49 by hand) and
+// diag(1, −1, 1) become positive definite with their smallest eigenvalue at 1e-9 × the largest;
+// an all-zero matrix has nothing to keep and stays an error.
+TEST(GraphIoBadInputTest, RepairInformationClampsEigenvaluesAndReportsTheLines) {
+  ReadOptions options;
+  options.repair_information = true;
+  ReadReport report;
+  const std::string text = kPose0 + "VERTEX_TRACKXYZ 1 0 0 1\n" +
+                           "EDGE_SE3_TRACKXYZ 0 1 0 0 1 1 0 0 1 0.7 0.49\n" +
+                           "EDGE_SE3_TRACKXYZ 0 1 0 0 1 1 0 0 -1 0 1\n" +
+                           "EDGE_SE3_TRACKXYZ 0 1 0 0 1 1 0 0 1 0 1\n";
+  std::istringstream in(text);
+  Expected<Graph> graph = ReadGraph(in, "repair.g2o", options, &report);
+  ASSERT_TRUE(graph.ok()) << graph.error().ToString();
+  EXPECT_EQ(report.repaired_information_lines, (std::vector<int64_t>{3, 4}));
+  ASSERT_EQ(graph->point_edges.size(), 3u);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> rank_one(graph->point_edges[0].information);
+  EXPECT_NEAR(rank_one.eigenvalues()(2), 1.49, 1e-12);
+  EXPECT_NEAR(rank_one.eigenvalues()(0), 1.49e-9, 1e-15);
+  EXPECT_NEAR(graph->point_edges[0].information(1, 2), 0.7, 1e-9);
+  const Eigen::Matrix3d& indefinite = graph->point_edges[1].information;
+  EXPECT_NEAR(indefinite(1, 1), 1e-9, 1e-15);
+  EXPECT_NEAR(indefinite(0, 0), 1.0, 1e-12);
+  EXPECT_EQ(graph->point_edges[2].information, Eigen::Matrix3d::Identity());  // untouched
+
+  std::istringstream zero(kPose0 + "VERTEX_TRACKXYZ 1 0 0 1\nEDGE_SE3_TRACKXYZ 0 1 0 0 1 0 0 0 0 0 0\n");
+  Expected<Graph> bad = ReadGraph(zero, "zero.g2o", options);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().line, 3);
 }
 
 TEST(GraphIoBadInputTest, ZeroQuaternionInAnEdgeMeasurement) {

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "dynslam/graph.h"
 #include "dynslam/status.h"
@@ -25,10 +26,16 @@ struct ReadOptions {
   // SPEC §7 item 1 (the released code's reading, never a default): 6×6 information taken as
   // already in tangent order [ω; ρ], without the permutation of SPEC §1.2.
   bool information_in_tangent_order = false;
+  // An information matrix that is not numerically positive definite (SPEC §1.1) is an error;
+  // with this set it is replaced by the nearest symmetric matrix whose eigenvalues are at least
+  // 1e-9 × the largest (eigenvalues clamped), and its line is reported. A matrix with no positive
+  // eigenvalue or a non-finite entry stays an error. docs/SPEC_NOTES.md.
+  bool repair_information = false;
 };
 
 struct ReadReport {
   std::map<std::string, int64_t> skipped_tags;  // tag → number of lines skipped
+  std::vector<int64_t> repaired_information_lines;  // lines whose information was repaired
   int64_t lines = 0;
 };
 
