@@ -7,7 +7,8 @@ length. benchmarks/report.py turns the CSVs into docs/BENCHMARKS.md.
     benchmarks/sweep.py                         # the reference graphs, every configuration
     benchmarks/sweep.py --quick                 # linear solvers at the defaults only
     benchmarks/sweep.py --graphs a.g2o b.g2o --configs default snc_eigen
-    benchmarks/sweep.py --scaling               # also the scaling runs (KITTI 0020)
+    benchmarks/sweep.py --scaling               # also the scaling runs (KITTI 0020, at most
+                                                # 25 steps each: time per step and peak memory)
 
 Outputs (default out/benchmarks/): runs.csv, floor.csv, scaling.csv. Every run is on one graph
 file, the same file for every configuration. Time to a target cost is read from the run's
@@ -23,6 +24,7 @@ import pathlib
 import subprocess
 import sys
 import tempfile
+import threading
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
@@ -67,17 +69,25 @@ def configurations(names, quick):
                              linear_flags + lm_flags + ["--threads", str(threads)]))
     grid.append(("dogleg/dynslam/t1", "schur_suitesparse", "dynslam", 1, "dogleg",
                  LINEAR["schur_suitesparse"] + ["--minimizer", "dogleg"]))
+    grid.append(("monotonic/dynslam/t1", "schur_suitesparse", "dynslam", 1, "lm",
+                 LINEAR["schur_suitesparse"] + ["--nonmonotonic-steps", "0"]))
     grid.append(("default", "default", "default", 1, "default", []))
     if names:
         grid = [c for c in grid if c[0] in names or c[1] in names]
     return grid
 
 
-def run_measured(command):
-    """Runs `command`; returns (exit code, stdout, stderr, peak RSS in MB of that process)."""
+def run_measured(command, timeout=None):
+    """Runs `command`; returns (exit code, stdout, stderr, peak RSS in MB of that process).
+    After `timeout` seconds the process is killed (exit code −9)."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         process = subprocess.Popen(command, stdout=out, stderr=err)
+        timer = threading.Timer(timeout, process.kill) if timeout else None
+        if timer:
+            timer.start()
         _, status, usage = os.wait4(process.pid, 0)
+        if timer:
+            timer.cancel()
         process.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
@@ -109,10 +119,15 @@ def reference_targets(graph):
     return released, optimum
 
 
-def solve_row(dynslam, graph, config, work):
+def solve_row(dynslam, graph, config, work, timeout=None):
     name, linear, lm, threads, minimizer, flags = config
     out = work / "solve"
-    code, _, err, peak = run_measured([dynslam, "solve", str(graph), "--out", str(out)] + flags)
+    code, _, err, peak = run_measured([dynslam, "solve", str(graph), "--out", str(out)] + flags,
+                                      timeout)
+    if code == -9 and timeout:
+        return {"graph": str(graph), "config": name, "linear": linear, "lm": lm,
+                "threads": threads, "minimizer": minimizer, "termination": "timeout",
+                "time_total": float(timeout), "peak_rss_mb": f"{peak:.1f}"}
     if code != 0:
         sys.exit(f"dynslam solve {graph} {' '.join(flags)} failed (exit {code}):\n{err}")
     with open(out / "summary.json") as f:
@@ -149,7 +164,7 @@ def floor_rows(floor_binary, graph, repeat):
     return list(csv.DictReader(out.splitlines()))
 
 
-def scaling_rows(dynslam, kitti, sequence, lengths, formulations, work):
+def scaling_rows(dynslam, kitti, sequence, lengths, formulations, max_steps, work):
     rows = []
     for frames in lengths:
         prefix = work / f"seq{sequence}_{frames}"
@@ -161,8 +176,8 @@ def scaling_rows(dynslam, kitti, sequence, lengths, formulations, work):
             subprocess.run([dynslam, "build", f"{prefix}.g2o", "--formulation", formulation,
                             "--gt", f"{prefix}.gt.txt", "--out", str(built)],
                            check=True, capture_output=True)
-            row = solve_row(dynslam, built, ("default", "default", "default", 1, "default", []),
-                            work)
+            row = solve_row(dynslam, built, ("default", "default", "default", 1, "default",
+                                             ["--max-iterations", str(max_steps)]), work)
             row.update({"frames": frames, "sequence": sequence})
             rows.append(row)
             print(f"  scaling {sequence} frames 0:{frames} {formulation}: "
@@ -189,10 +204,16 @@ def main():
     parser.add_argument("--scaling", action="store_true", help="also the scaling runs")
     parser.add_argument("--scaling-lengths", nargs="*", type=int,
                         default=[50, 100, 200, 400, 837])
+    parser.add_argument("--scaling-formulations", nargs="*", default=["wc", "oc_b"])
+    parser.add_argument("--scaling-max-steps", type=int, default=25,
+                        help="linear solves per scaling run (time per step is the measure; wc "
+                             "converges before)")
     parser.add_argument("--kitti", default=str(ROOT / "data" / "kitti_tracking"))
     parser.add_argument("--build", default=str(ROOT / "build" / "release"))
     parser.add_argument("--repeat", type=int, default=5, help="factorisations per floor timing")
     parser.add_argument("--out", default=str(ROOT / "out" / "benchmarks"))
+    parser.add_argument("--timeout", type=float, default=300,
+                        help="seconds before a solve is stopped (row: termination timeout)")
     args = parser.parse_args()
 
     build = pathlib.Path(args.build)
@@ -220,15 +241,17 @@ def main():
             for row in floor_rows(floor_binary, graph, args.repeat):
                 floors.append(row)
             for config in configurations(args.configs, args.quick):
-                row = solve_row(dynslam, graph, config, work)
+                row = solve_row(dynslam, graph, config, work, args.timeout)
                 runs.append(row)
-                print(f"{graph.parent.parent.name}/{graph.stem} {config[0]}: {row['steps']} steps, "
-                      f"{row['time_total']:.2f} s, rel {row['rel_to_optimum']}", file=sys.stderr)
+                print(f"{graph.parent.parent.name}/{graph.stem} {config[0]}: "
+                      f"{row.get('steps', '—')} steps, {row['time_total']:.2f} s, "
+                      f"{row['termination']}, rel {row.get('rel_to_optimum', '—')}",
+                      file=sys.stderr)
                 write_csv(out / "runs.csv", runs, FIELDS)
             write_csv(out / "floor.csv", floors, list(floors[0].keys()))
         if args.scaling:
             rows = scaling_rows(dynslam, args.kitti, "0020", args.scaling_lengths,
-                                ["wc", "oc_b"], work)
+                                args.scaling_formulations, args.scaling_max_steps, work)
             write_csv(out / "scaling.csv", rows, ["sequence", "frames"] + FIELDS)
     print(f"wrote {out}/runs.csv, floor.csv" + (", scaling.csv" if args.scaling else ""),
           file=sys.stderr)
