@@ -25,6 +25,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
@@ -235,6 +236,7 @@ def main():
               file=sys.stderr)
 
     runs, floors = [], []
+    started = time.monotonic()
     with tempfile.TemporaryDirectory() as tmp:
         work = pathlib.Path(tmp)
         for graph in graphs:
@@ -253,7 +255,10 @@ def main():
             rows = scaling_rows(dynslam, args.kitti, "0020", args.scaling_lengths,
                                 args.scaling_formulations, args.scaling_max_steps, work)
             write_csv(out / "scaling.csv", rows, ["sequence", "frames"] + FIELDS)
-    print(f"wrote {out}/runs.csv, floor.csv" + (", scaling.csv" if args.scaling else ""),
+    with open(out / "meta.json", "w") as f:
+        json.dump({"command": " ".join(["benchmarks/sweep.py"] + sys.argv[1:]),
+                   "seconds": round(time.monotonic() - started)}, f)
+    print(f"wrote {out}/runs.csv, floor.csv, meta.json" + (", scaling.csv" if args.scaling else ""),
           file=sys.stderr)
 
 
