@@ -61,8 +61,9 @@ SolverFlags::SolverFlags(ArgParser* parser)
       nonmonotonic_steps_(defaults_.nonmonotonic_steps),
       fix_first_(defaults_.fix_first),
       eliminate_object_points_(defaults_.eliminate_object_points) {
-  parser->AddChoice("minimizer", &minimizer_, {"lm", "dogleg"},
-                    "trust-region strategy: Levenberg-Marquardt or Powell's dogleg");
+  parser->AddChoice("minimizer", &minimizer_, {"auto", "lm", "dogleg"},
+                    "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: dogleg "
+                    "for graphs with points, lm for pose graphs");
   parser->AddChoice("linear-solver", &linear_solver_,
                     {"sparse_schur", "sparse_normal_cholesky", "iterative_schur", "dense_schur"},
                     "linear solver of each step; the Schur solvers eliminate points first");

@@ -193,11 +193,14 @@ def main():
     args = parser.parse_args()
     src = pathlib.Path(args.runs)
     runs, floors, scaling = read(src / "runs.csv"), read(src / "floor.csv"), read(src / "scaling.csv")
-    meta = {"command": "benchmarks/sweep.py", "seconds": None}
+    sweeps = []
     if (src / "meta.json").exists():
-        meta.update(json.loads((src / "meta.json").read_text()))
-    duration = (f"{meta['seconds'] / 60:.0f} minutes on this machine" if meta["seconds"]
-                else "duration not recorded")
+        sweeps = json.loads((src / "meta.json").read_text()).get("sweeps", [])
+    if not sweeps:
+        sweeps = [{"command": "benchmarks/sweep.py --quick --scaling", "seconds": None}]
+    seconds = [s["seconds"] for s in sweeps if s.get("seconds")]
+    duration = (f"{sum(seconds) / 60:.0f} minutes on this machine" if len(seconds) == len(sweeps)
+                else "duration not recorded for every sweep")
     if not runs:
         sys.exit(f"{src}/runs.csv: missing or empty (run benchmarks/sweep.py first)")
     out = pathlib.Path(args.out)
@@ -210,7 +213,8 @@ def main():
         f"hand. Reproduce ({duration}):",
         "",
         "    cmake --build build/release --target dynslam_cli factorization_floor",
-        f"    OPENBLAS_NUM_THREADS=1 {meta['command']} && benchmarks/report.py",
+        *[f"    OPENBLAS_NUM_THREADS=1 {s['command']}" for s in sweeps],
+        "    benchmarks/report.py",
         "",
         f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "
         "nothing else running. GTSAM's times are those stored in the reference set "
@@ -236,7 +240,7 @@ def main():
         "",
         *fastest_table(runs),
         "",
-        "## Scaling (simulated KITTI 0020, growing frame ranges, default solver)",
+        "## Scaling (simulated KITTI 0020, growing frame ranges; LM, sparse Schur, SuiteSparse)",
         "",
         "Each run stops after at most 25 linear solves (`--scaling-max-steps`): time per step is "
         "the measure; `wc` converges before that, so its total is the time to convergence.",
@@ -245,10 +249,16 @@ def main():
         "",
         "## The sweep",
         "",
-        "Configurations: linear solver/backend × LM settings × threads. LM settings: `dynslam` "
-        "(the defaults: tolerances 1e-12, 500 steps), `gtsam_like` (first damping 1e-5, function "
-        "tolerance 1e-5, 100 steps: GTSAM's released profile where Ceres has the knob), "
-        "`ceres_defaults` (Ceres's own tolerances, 50 steps).",
+        "Configurations: `LINEAR/LM/tN` is Levenberg–Marquardt with a linear solver and backend "
+        "(`schur` = sparse Schur, `snc` = sparse normal Cholesky; SuiteSparse's CHOLMOD or Eigen's "
+        "SimplicialLDLT; `iterative_schur` with the Schur–Jacobi preconditioner), LM settings "
+        "and N threads. LM settings: `dynslam` (tolerances 1e-12, 500 steps), `gtsam_like` (first "
+        "damping 1e-5, function tolerance 1e-5, 100 steps: GTSAM's released profile where Ceres "
+        "has the knob), `ceres_defaults` (Ceres's own tolerances, 50 steps). `dogleg` is Powell's "
+        "dogleg with sparse Schur and SuiteSparse, `dogleg_snc_eigen` with sparse normal Cholesky "
+        "and Eigen; `monotonic` is LM without the non-monotonic steps that the defaults take on "
+        "graphs with kinematic edges; `default` is no option at all (`default/t2`: two threads). "
+        "A solve that runs past the timeout is stopped and marked `timeout`.",
         *sweep_tables(runs),
         "",
     ]

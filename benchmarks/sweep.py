@@ -67,11 +67,16 @@ def configurations(names, quick):
                     continue
                 name = f"{linear}/{lm}/t{threads}"
                 grid.append((name, linear, lm, threads, "lm",
-                             linear_flags + lm_flags + ["--threads", str(threads)]))
+                             ["--minimizer", "lm"] + linear_flags + lm_flags +
+                             ["--threads", str(threads)]))
     grid.append(("dogleg/dynslam/t1", "schur_suitesparse", "dynslam", 1, "dogleg",
                  LINEAR["schur_suitesparse"] + ["--minimizer", "dogleg"]))
+    grid.append(("dogleg_snc_eigen/dynslam/t1", "snc_eigen", "dynslam", 1, "dogleg",
+                 LINEAR["snc_eigen"] + ["--minimizer", "dogleg"]))
+    grid.append(("default/t2", "default", "default", 2, "default", ["--threads", "2"]))
     grid.append(("monotonic/dynslam/t1", "schur_suitesparse", "dynslam", 1, "lm",
-                 LINEAR["schur_suitesparse"] + ["--nonmonotonic-steps", "0"]))
+                 ["--minimizer", "lm"] + LINEAR["schur_suitesparse"] +
+                 ["--nonmonotonic-steps", "0"]))
     grid.append(("default", "default", "default", 1, "default", []))
     if names:
         grid = [c for c in grid if c[0] in names or c[1] in names]
@@ -177,7 +182,10 @@ def scaling_rows(dynslam, kitti, sequence, lengths, formulations, max_steps, wor
             subprocess.run([dynslam, "build", f"{prefix}.g2o", "--formulation", formulation,
                             "--gt", f"{prefix}.gt.txt", "--out", str(built)],
                            check=True, capture_output=True)
-            row = solve_row(dynslam, built, ("default", "default", "default", 1, "default",
+            # A fixed solver (LM, sparse Schur, SuiteSparse): time per step is the measure.
+            row = solve_row(dynslam, built, ("lm_schur_suitesparse", "schur_suitesparse",
+                                             "dynslam", 1, "lm",
+                                             ["--minimizer", "lm"] + LINEAR["schur_suitesparse"] +
                                              ["--max-iterations", str(max_steps)]), work)
             row.update({"frames": frames, "sequence": sequence})
             rows.append(row)
@@ -213,6 +221,9 @@ def main():
     parser.add_argument("--build", default=str(ROOT / "build" / "release"))
     parser.add_argument("--repeat", type=int, default=5, help="factorisations per floor timing")
     parser.add_argument("--out", default=str(ROOT / "out" / "benchmarks"))
+    parser.add_argument("--append", action="store_true",
+                        help="add rows to OUT/runs.csv instead of replacing it")
+    parser.add_argument("--no-floor", action="store_true", help="skip the factorisation floor")
     parser.add_argument("--timeout", type=float, default=300,
                         help="seconds before a solve is stopped (row: termination timeout)")
     args = parser.parse_args()
@@ -236,12 +247,15 @@ def main():
               file=sys.stderr)
 
     runs, floors = [], []
+    if args.append and (out / "runs.csv").exists():
+        with open(out / "runs.csv", newline="") as f:
+            runs = list(csv.DictReader(f))
     started = time.monotonic()
     with tempfile.TemporaryDirectory() as tmp:
         work = pathlib.Path(tmp)
         for graph in graphs:
-            for row in floor_rows(floor_binary, graph, args.repeat):
-                floors.append(row)
+            if not args.no_floor:
+                floors += floor_rows(floor_binary, graph, args.repeat)
             for config in configurations(args.configs, args.quick):
                 row = solve_row(dynslam, graph, config, work, args.timeout)
                 runs.append(row)
@@ -250,14 +264,19 @@ def main():
                       f"{row['termination']}, rel {row.get('rel_to_optimum', '—')}",
                       file=sys.stderr)
                 write_csv(out / "runs.csv", runs, FIELDS)
-            write_csv(out / "floor.csv", floors, list(floors[0].keys()))
+            if floors:
+                write_csv(out / "floor.csv", floors, list(floors[0].keys()))
         if args.scaling:
             rows = scaling_rows(dynslam, args.kitti, "0020", args.scaling_lengths,
                                 args.scaling_formulations, args.scaling_max_steps, work)
             write_csv(out / "scaling.csv", rows, ["sequence", "frames"] + FIELDS)
-    with open(out / "meta.json", "w") as f:
-        json.dump({"command": " ".join(["benchmarks/sweep.py"] + sys.argv[1:]),
-                   "seconds": round(time.monotonic() - started)}, f)
+    # Every sweep that wrote into OUT, in order (report.py quotes them as the reproduction).
+    sweeps = []
+    if args.append and (out / "meta.json").exists():
+        sweeps = json.loads((out / "meta.json").read_text()).get("sweeps", [])
+    sweeps.append({"command": " ".join(["benchmarks/sweep.py"] + sys.argv[1:]),
+                   "seconds": round(time.monotonic() - started)})
+    (out / "meta.json").write_text(json.dumps({"sweeps": sweeps}, indent=1) + "\n")
     print(f"wrote {out}/runs.csv, floor.csv, meta.json" + (", scaling.csv" if args.scaling else ""),
           file=sys.stderr)
 

@@ -111,7 +111,7 @@ Json SolverJson(const SolverOptions& options, const SolveReport& report) {
   }
   return Json::Object()
       .Set("library", "Ceres Solver 2.1 (dynslam)")
-      .Set("minimizer", Name(options.minimizer))
+      .Set("minimizer", Name(report.minimizer))
       .Set("linear_solver", Name(options.linear_solver))
       .Set("sparse_backend", Name(options.sparse_backend))
       .Set("threads", options.threads)

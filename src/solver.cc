@@ -54,7 +54,8 @@ bool ParseName(const NamedEnum (&table)[N], const std::string& text, E* value) {
 
 constexpr NamedEnum kMinimizerNames[] = {
     {"lm", static_cast<int>(MinimizerType::kLevenbergMarquardt)},
-    {"dogleg", static_cast<int>(MinimizerType::kDogleg)}};
+    {"dogleg", static_cast<int>(MinimizerType::kDogleg)},
+    {"auto", static_cast<int>(MinimizerType::kAuto)}};
 constexpr NamedEnum kLinearSolverNames[] = {
     {"sparse_schur", static_cast<int>(LinearSolverType::kSparseSchur)},
     {"sparse_normal_cholesky", static_cast<int>(LinearSolverType::kSparseNormalCholesky)},
@@ -311,10 +312,18 @@ int NonmonotonicSteps(const SolverOptions& options, const Graph& graph) {
   return graph.kinematic_edges.empty() ? 0 : 5;
 }
 
+// The minimiser with the auto rule of MinimizerType::kAuto.
+MinimizerType ResolveMinimizer(const SolverOptions& options, const Graph& graph) {
+  if (options.minimizer != MinimizerType::kAuto) return options.minimizer;
+  const bool has_points = std::any_of(graph.vertices.begin(), graph.vertices.end(),
+                                      [](const auto& v) { return v.second.type == VertexType::kPoint; });
+  return has_points ? MinimizerType::kDogleg : MinimizerType::kLevenbergMarquardt;
+}
+
 ceres::Solver::Options MakeCeresOptions(const SolverOptions& options, const Graph& graph) {
   ceres::Solver::Options o;
   o.minimizer_type = ceres::TRUST_REGION;
-  o.trust_region_strategy_type = options.minimizer == MinimizerType::kDogleg
+  o.trust_region_strategy_type = ResolveMinimizer(options, graph) == MinimizerType::kDogleg
                                      ? ceres::DOGLEG
                                      : ceres::LEVENBERG_MARQUARDT;
   switch (options.linear_solver) {
@@ -500,6 +509,7 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
 
   ceres::Solver::Options ceres_options = MakeCeresOptions(options, *graph);
   report.nonmonotonic_steps = NonmonotonicSteps(options, *graph);
+  report.minimizer = ResolveMinimizer(options, *graph);
   // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
   // ordering only limits the fill-reducing ordering.
   if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {

@@ -179,6 +179,31 @@ TEST(SolverTest, NamesRoundTrip) {
   }
   LinearSolverType type;
   EXPECT_FALSE(Parse("cholmod", &type));
+  for (const char* name : {"lm", "dogleg", "auto"}) {
+    MinimizerType minimizer;
+    ASSERT_TRUE(Parse(name, &minimizer));
+    EXPECT_STREQ(Name(minimizer), name);
+  }
+}
+
+TEST(SolverTest, AutoMinimizerIsDoglegWithPointsAndLevenbergMarquardtOnPoseGraphs) {
+  Graph with_points = Read(kObjectCentric);
+  Expected<SolveReport> report = Solve(SolverOptions{}, &with_points);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->minimizer, MinimizerType::kDogleg);
+
+  Graph pose_graph = Read(kTwoPoses);
+  report = Solve(SolverOptions{}, &pose_graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->minimizer, MinimizerType::kLevenbergMarquardt);
+
+  SolverOptions options;
+  options.minimizer = MinimizerType::kDogleg;
+  pose_graph = Read(kTwoPoses);
+  report = Solve(options, &pose_graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->minimizer, MinimizerType::kDogleg);
+  EXPECT_LT(report->final_cost, 1e-20);
 }
 
 }  // namespace

@@ -20,7 +20,9 @@
 
 namespace dynslam {
 
-enum class MinimizerType { kLevenbergMarquardt, kDogleg };
+// kAuto: Powell's dogleg for graphs with point variables (dynamic SLAM), Levenberg–Marquardt for
+// pose graphs — per class, the faster to the optimum on the reference graphs (docs/SOLVER.md).
+enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
 enum class LinearSolverType {
   kSparseSchur,
   kSparseNormalCholesky,
@@ -29,7 +31,7 @@ enum class LinearSolverType {
 };
 enum class SparseBackend { kSuiteSparse, kEigen };
 
-// Command-line spellings: "lm", "dogleg"; "sparse_schur", …; "suitesparse", "eigen".
+// Command-line spellings: "lm", "dogleg", "auto"; "sparse_schur", …; "suitesparse", "eigen".
 const char* Name(MinimizerType type);
 const char* Name(LinearSolverType type);
 const char* Name(SparseBackend backend);
@@ -46,7 +48,7 @@ struct RobustKernel {
 };
 
 struct SolverOptions {
-  MinimizerType minimizer = MinimizerType::kLevenbergMarquardt;
+  MinimizerType minimizer = MinimizerType::kAuto;
   LinearSolverType linear_solver = LinearSolverType::kSparseSchur;
   SparseBackend sparse_backend = SparseBackend::kSuiteSparse;
   int threads = 1;
@@ -115,6 +117,7 @@ struct SolveReport {
   double time_preprocessor_s = 0;
   std::string eliminated_first;         // what the Schur ordering put in the first group
   int nonmonotonic_steps = 0;           // as used (SolverOptions::nonmonotonic_steps resolved)
+  MinimizerType minimizer = MinimizerType::kLevenbergMarquardt;  // as used (kAuto resolved)
   std::vector<VertexId> held_constant;  // unused vertices and, with fix_first, the first pose
   std::vector<StepRecord> convergence;
   std::vector<std::string> warnings;
