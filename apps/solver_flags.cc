@@ -65,10 +65,13 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: dogleg "
                     "for graphs with points, lm for pose graphs");
   parser->AddChoice("linear-solver", &linear_solver_,
-                    {"sparse_schur", "sparse_normal_cholesky", "iterative_schur", "dense_schur"},
-                    "linear solver of each step; the Schur solvers eliminate points first");
-  parser->AddChoice("sparse-backend", &sparse_backend_, {"suitesparse", "eigen"},
-                    "sparse Cholesky library (CHOLMOD or Eigen's SimplicialLDLT)");
+                    {"auto", "sparse_schur", "sparse_normal_cholesky", "iterative_schur",
+                     "dense_schur"},
+                    "linear solver of each step; the Schur solvers eliminate points first; auto: "
+                    "sparse_normal_cholesky for graphs with points, sparse_schur for pose graphs");
+  parser->AddChoice("sparse-backend", &sparse_backend_, {"auto", "suitesparse", "eigen"},
+                    "sparse Cholesky library (CHOLMOD or Eigen's SimplicialLDLT); auto: eigen for "
+                    "graphs with points, suitesparse for pose graphs");
   parser->AddInt("threads", &threads_, "threads for evaluation and linear algebra", 1, 256);
   parser->AddInt("max-iterations", &max_iterations_, "most linear solves", 0, 1000000);
   parser->AddDouble("function-tolerance", &function_tolerance_,

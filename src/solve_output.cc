@@ -100,7 +100,8 @@ const char* KernelName(RobustKernel::Type type) {
   return "?";
 }
 
-Json SolverJson(const SolverOptions& options, const SolveReport& report) {
+// `options` as the solve used them (SolveReport::options_used: no auto left).
+Json SolverJson(const SolverOptions& options) {
   Json kernels = Json::Object();
   for (const EdgeKind kind : kAllEdgeKinds) {
     const RobustKernel& kernel = options.kernels[static_cast<int>(kind)];
@@ -111,7 +112,7 @@ Json SolverJson(const SolverOptions& options, const SolveReport& report) {
   }
   return Json::Object()
       .Set("library", "Ceres Solver 2.1 (dynslam)")
-      .Set("minimizer", Name(report.minimizer))
+      .Set("minimizer", Name(options.minimizer))
       .Set("linear_solver", Name(options.linear_solver))
       .Set("sparse_backend", Name(options.sparse_backend))
       .Set("threads", options.threads)
@@ -120,7 +121,7 @@ Json SolverJson(const SolverOptions& options, const SolveReport& report) {
       .Set("gradient_tolerance", options.gradient_tolerance)
       .Set("parameter_tolerance", options.parameter_tolerance)
       .Set("initial_lambda", options.initial_lambda)
-      .Set("nonmonotonic_steps", report.nonmonotonic_steps)
+      .Set("nonmonotonic_steps", options.nonmonotonic_steps)
       .Set("fix_first", options.fix_first)
       .Set("eliminate_object_points", options.eliminate_object_points)
       .Set("robust_kernels", std::move(kernels));
@@ -201,7 +202,7 @@ Json SummaryJson(const SolveOutputs& outputs) {
                          .Set("linear_solve", report.time_linear_solver_s))
       .Set("schur_ordering", report.eliminated_first)
       .Set("held_constant", std::move(held))
-      .Set("solver", SolverJson(*outputs.options, report))
+      .Set("solver", SolverJson(report.options_used))
       .Set("warnings", std::move(warnings));
   if (outputs.metrics) summary.Set("metrics", *outputs.metrics);
   return summary;

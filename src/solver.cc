@@ -60,10 +60,12 @@ constexpr NamedEnum kLinearSolverNames[] = {
     {"sparse_schur", static_cast<int>(LinearSolverType::kSparseSchur)},
     {"sparse_normal_cholesky", static_cast<int>(LinearSolverType::kSparseNormalCholesky)},
     {"iterative_schur", static_cast<int>(LinearSolverType::kIterativeSchur)},
-    {"dense_schur", static_cast<int>(LinearSolverType::kDenseSchur)}};
+    {"dense_schur", static_cast<int>(LinearSolverType::kDenseSchur)},
+    {"auto", static_cast<int>(LinearSolverType::kAuto)}};
 constexpr NamedEnum kBackendNames[] = {
     {"suitesparse", static_cast<int>(SparseBackend::kSuiteSparse)},
-    {"eigen", static_cast<int>(SparseBackend::kEigen)}};
+    {"eigen", static_cast<int>(SparseBackend::kEigen)},
+    {"auto", static_cast<int>(SparseBackend::kAuto)}};
 
 std::unique_ptr<ceres::LossFunction> MakeLoss(const RobustKernel& kernel) {
   switch (kernel.type) {
@@ -305,25 +307,11 @@ std::shared_ptr<ceres::ParameterBlockOrdering> Assembly::MakeOrdering(bool elimi
   return ordering;
 }
 
-// The number of consecutive non-monotonic steps Ceres may take (0: monotonic), with the auto
-// rule of SolverOptions::nonmonotonic_steps.
-int NonmonotonicSteps(const SolverOptions& options, const Graph& graph) {
-  if (options.nonmonotonic_steps >= 0) return options.nonmonotonic_steps;
-  return graph.kinematic_edges.empty() ? 0 : 5;
-}
-
-// The minimiser with the auto rule of MinimizerType::kAuto.
-MinimizerType ResolveMinimizer(const SolverOptions& options, const Graph& graph) {
-  if (options.minimizer != MinimizerType::kAuto) return options.minimizer;
-  const bool has_points = std::any_of(graph.vertices.begin(), graph.vertices.end(),
-                                      [](const auto& v) { return v.second.type == VertexType::kPoint; });
-  return has_points ? MinimizerType::kDogleg : MinimizerType::kLevenbergMarquardt;
-}
-
-ceres::Solver::Options MakeCeresOptions(const SolverOptions& options, const Graph& graph) {
+// `options` has no auto left (ResolveAuto).
+ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
   ceres::Solver::Options o;
   o.minimizer_type = ceres::TRUST_REGION;
-  o.trust_region_strategy_type = ResolveMinimizer(options, graph) == MinimizerType::kDogleg
+  o.trust_region_strategy_type = options.minimizer == MinimizerType::kDogleg
                                      ? ceres::DOGLEG
                                      : ceres::LEVENBERG_MARQUARDT;
   switch (options.linear_solver) {
@@ -336,6 +324,7 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options, const Grap
       o.preconditioner_type = ceres::SCHUR_JACOBI;
       break;
     case LinearSolverType::kDenseSchur: o.linear_solver_type = ceres::DENSE_SCHUR; break;
+    case LinearSolverType::kAuto: break;  // resolved before
   }
   o.sparse_linear_algebra_library_type = options.sparse_backend == SparseBackend::kEigen
                                              ? ceres::EIGEN_SPARSE
@@ -346,9 +335,8 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options, const Grap
   o.gradient_tolerance = options.gradient_tolerance;
   o.parameter_tolerance = options.parameter_tolerance;
   o.initial_trust_region_radius = 1.0 / options.initial_lambda;
-  const int nonmonotonic_steps = NonmonotonicSteps(options, graph);
-  o.use_nonmonotonic_steps = nonmonotonic_steps > 0;
-  if (o.use_nonmonotonic_steps) o.max_consecutive_nonmonotonic_steps = nonmonotonic_steps;
+  o.use_nonmonotonic_steps = options.nonmonotonic_steps > 0;
+  if (o.use_nonmonotonic_steps) o.max_consecutive_nonmonotonic_steps = options.nonmonotonic_steps;
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
   return o;
@@ -430,6 +418,27 @@ bool Parse(const std::string& text, SparseBackend* backend) {
   return ParseName(kBackendNames, text, backend);
 }
 
+SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
+  SolverOptions resolved = options;
+  const bool has_points = std::any_of(graph.vertices.begin(), graph.vertices.end(), [](const auto& v) {
+    return v.second.type == VertexType::kPoint;
+  });
+  if (resolved.minimizer == MinimizerType::kAuto) {
+    resolved.minimizer = has_points ? MinimizerType::kDogleg : MinimizerType::kLevenbergMarquardt;
+  }
+  if (resolved.linear_solver == LinearSolverType::kAuto) {
+    resolved.linear_solver =
+        has_points ? LinearSolverType::kSparseNormalCholesky : LinearSolverType::kSparseSchur;
+  }
+  if (resolved.sparse_backend == SparseBackend::kAuto) {
+    resolved.sparse_backend = has_points ? SparseBackend::kEigen : SparseBackend::kSuiteSparse;
+  }
+  if (resolved.nonmonotonic_steps == -1) {
+    resolved.nonmonotonic_steps = graph.kinematic_edges.empty() ? 0 : 5;
+  }
+  return resolved;
+}
+
 double TotalCost(const CostByKind& cost_by_kind) {
   double total = 0;
   for (const double cost : cost_by_kind) total += cost;
@@ -467,7 +476,8 @@ Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOption
   return out;
 }
 
-Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
+Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
+  const SolverOptions options = ResolveAuto(requested, *graph);
   if (Status status = CheckOptions(options); !status.ok()) return status.error();
   if (graph->NumEdges() == 0) return Error{"", 0, "the graph has no edges: there is nothing to solve"};
   if (graph->priors.empty() && !options.fix_first) {
@@ -507,9 +517,8 @@ Expected<SolveReport> Solve(const SolverOptions& options, Graph* graph) {
     if (Status status = assembly.CheckFinite(kind); !status.ok()) return status.error();
   }
 
-  ceres::Solver::Options ceres_options = MakeCeresOptions(options, *graph);
-  report.nonmonotonic_steps = NonmonotonicSteps(options, *graph);
-  report.minimizer = ResolveMinimizer(options, *graph);
+  ceres::Solver::Options ceres_options = MakeCeresOptions(options);
+  report.options_used = options;
   // Only the Schur solvers need an elimination group; for sparse Cholesky a constrained
   // ordering only limits the fill-reducing ordering.
   if (options.linear_solver != LinearSolverType::kSparseNormalCholesky) {

@@ -151,19 +151,19 @@ TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithKinematicEdges) {
   ASSERT_FALSE(object_centric.kinematic_edges.empty());
   Expected<SolveReport> report = Solve(SolverOptions{}, &object_centric);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->nonmonotonic_steps, 5);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 5);
 
   Graph pose_graph = Read(kTwoPoses);
   report = Solve(SolverOptions{}, &pose_graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->nonmonotonic_steps, 0);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
 
   SolverOptions options;
   options.nonmonotonic_steps = 2;
   pose_graph = Read(kTwoPoses);
   report = Solve(options, &pose_graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->nonmonotonic_steps, 2);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 2);
   EXPECT_LT(report->final_cost, 1e-20);
 
   options.nonmonotonic_steps = -2;
@@ -172,7 +172,7 @@ TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithKinematicEdges) {
 
 TEST(SolverTest, NamesRoundTrip) {
   for (const char* name : {"sparse_schur", "sparse_normal_cholesky", "iterative_schur",
-                           "dense_schur"}) {
+                           "dense_schur", "auto"}) {
     LinearSolverType type;
     ASSERT_TRUE(Parse(name, &type));
     EXPECT_STREQ(Name(type), name);
@@ -186,23 +186,27 @@ TEST(SolverTest, NamesRoundTrip) {
   }
 }
 
-TEST(SolverTest, AutoMinimizerIsDoglegWithPointsAndLevenbergMarquardtOnPoseGraphs) {
+TEST(SolverTest, AutoIsDoglegNormalCholeskyEigenWithPointsAndLmSchurSuiteSparseOnPoseGraphs) {
   Graph with_points = Read(kObjectCentric);
   Expected<SolveReport> report = Solve(SolverOptions{}, &with_points);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->minimizer, MinimizerType::kDogleg);
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
+  EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
+  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kEigen);
 
   Graph pose_graph = Read(kTwoPoses);
   report = Solve(SolverOptions{}, &pose_graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->minimizer, MinimizerType::kLevenbergMarquardt);
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
+  EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseSchur);
+  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kSuiteSparse);
 
   SolverOptions options;
   options.minimizer = MinimizerType::kDogleg;
   pose_graph = Read(kTwoPoses);
   report = Solve(options, &pose_graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->minimizer, MinimizerType::kDogleg);
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
   EXPECT_LT(report->final_cost, 1e-20);
 }
 

@@ -20,18 +20,21 @@
 
 namespace dynslam {
 
-// kAuto: Powell's dogleg for graphs with point variables (dynamic SLAM), Levenberg–Marquardt for
-// pose graphs — per class, the faster to the optimum on the reference graphs (docs/SOLVER.md).
+// kAuto (the defaults) chooses per graph (ResolveAuto): for graphs with point variables (every
+// dynamic SLAM formulation) Powell's dogleg with sparse normal Cholesky on Eigen, for pose graphs
+// Levenberg–Marquardt with sparse Schur on SuiteSparse — per class, the fastest to the optimum
+// in the benchmarks (docs/SOLVER.md, docs/BENCHMARKS.md).
 enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
 enum class LinearSolverType {
   kSparseSchur,
   kSparseNormalCholesky,
   kIterativeSchur,
   kDenseSchur,
+  kAuto,
 };
-enum class SparseBackend { kSuiteSparse, kEigen };
+enum class SparseBackend { kSuiteSparse, kEigen, kAuto };
 
-// Command-line spellings: "lm", "dogleg", "auto"; "sparse_schur", …; "suitesparse", "eigen".
+// Command-line spellings: "lm", "dogleg"; "sparse_schur", …; "suitesparse", "eigen"; "auto".
 const char* Name(MinimizerType type);
 const char* Name(LinearSolverType type);
 const char* Name(SparseBackend backend);
@@ -49,8 +52,8 @@ struct RobustKernel {
 
 struct SolverOptions {
   MinimizerType minimizer = MinimizerType::kAuto;
-  LinearSolverType linear_solver = LinearSolverType::kSparseSchur;
-  SparseBackend sparse_backend = SparseBackend::kSuiteSparse;
+  LinearSolverType linear_solver = LinearSolverType::kAuto;
+  SparseBackend sparse_backend = SparseBackend::kAuto;
   int threads = 1;
   int max_iterations = 500;  // GTSAM tight profile's maxIterations (SPEC §6)
   // Ceres's tolerances (Solver::Options); tighter than Ceres's defaults so that a solve lands
@@ -116,8 +119,7 @@ struct SolveReport {
   double time_linear_solver_s = 0;
   double time_preprocessor_s = 0;
   std::string eliminated_first;         // what the Schur ordering put in the first group
-  int nonmonotonic_steps = 0;           // as used (SolverOptions::nonmonotonic_steps resolved)
-  MinimizerType minimizer = MinimizerType::kLevenbergMarquardt;  // as used (kAuto resolved)
+  SolverOptions options_used;           // the options with every auto resolved (ResolveAuto)
   std::vector<VertexId> held_constant;  // unused vertices and, with fix_first, the first pose
   std::vector<StepRecord> convergence;
   std::vector<std::string> warnings;
@@ -125,6 +127,10 @@ struct SolveReport {
 
 // The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
 // Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
+// `options` with every auto field resolved for `graph`: minimizer, linear solver and sparse
+// backend (MinimizerType::kAuto), nonmonotonic_steps (−1).
+SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph);
+
 Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options = {});
 
 // The Jacobian of the whitened residuals (SPEC §1.5) at the graph's values, taken in the
