@@ -186,13 +186,22 @@ TEST(SolverTest, NamesRoundTrip) {
   }
 }
 
-TEST(SolverTest, AutoIsDoglegNormalCholeskyEigenWithPointsAndLmSchurSuiteSparseOnPoseGraphs) {
+TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
+  // Points and kinematic edges: LM, sparse normal Cholesky, Eigen.
+  Graph kinematic = Read(kObjectCentric);
+  Expected<SolveReport> report = Solve(SolverOptions{}, &kinematic);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
+  EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
+  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kEigen);
+
+  // Points, no kinematic edge: dogleg.
   Graph with_points = Read(kObjectCentric);
-  Expected<SolveReport> report = Solve(SolverOptions{}, &with_points);
+  with_points.kinematic_edges.clear();
+  report = Solve(SolverOptions{}, &with_points);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
   EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
-  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kEigen);
 
   Graph pose_graph = Read(kTwoPoses);
   report = Solve(SolverOptions{}, &pose_graph);

@@ -21,9 +21,10 @@
 namespace dynslam {
 
 // kAuto (the defaults) chooses per graph (ResolveAuto): for graphs with point variables (every
-// dynamic SLAM formulation) Powell's dogleg with sparse normal Cholesky on Eigen, for pose graphs
-// Levenberg–Marquardt with sparse Schur on SuiteSparse — per class, the fastest to the optimum
-// in the benchmarks (docs/SOLVER.md, docs/BENCHMARKS.md).
+// dynamic SLAM formulation) sparse normal Cholesky on Eigen, with Powell's dogleg unless the
+// graph has kinematic edges (oc_b, oc_c: Levenberg–Marquardt); for pose graphs LM with sparse
+// Schur on SuiteSparse — per class, the fastest to the optimum in the benchmarks that also stays
+// out of the poor basins seen on simulated scenes (docs/SOLVER.md, docs/BENCHMARKS.md).
 enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
 enum class LinearSolverType {
   kSparseSchur,
