@@ -215,7 +215,10 @@ def main():
         "",
         "    cmake --build build/release --target dynslam_cli factorization_floor",
         *[f"    OPENBLAS_NUM_THREADS=1 {s['command']}" for s in sweeps],
-        "    benchmarks/report.py",
+        f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
+        "",
+        "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
+        "`docs/benchmarks/data/`.)",
         "",
         f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "
         "nothing else running. GTSAM's times are those stored in the reference set "
