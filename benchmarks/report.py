@@ -218,7 +218,9 @@ def main():
         f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
         "",
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
-        "`docs/benchmarks/data/`.)",
+        "`docs/benchmarks/data/`. With more than one sweep listed, the data was made in steps as "
+        "the defaults changed, the rows of superseded defaults dropped in between; on the current "
+        "code the first command alone makes every row.)",
         "",
         f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "
         "nothing else running. GTSAM's times are those stored in the reference set "
