@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", graph.error().ToString().c_str());
     return 2;
   }
-  dynslam::SolverOptions options;  // LM, sparse Schur, SuiteSparse, tolerances 1e-12
+  dynslam::SolverOptions options;  // auto solver choice per graph (solver.h), tolerances 1e-12
   dynslam::Expected<dynslam::SolveReport> report = dynslam::Solve(options, &*graph);
   if (!report.ok()) {  // e.g. no prior (gauge freedom): set options.fix_first
     std::fprintf(stderr, "%s\n", report.error().ToString().c_str());
