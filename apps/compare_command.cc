@@ -326,7 +326,6 @@ int RunCompare(int argc, char** argv) {
     outputs.input = (dir / "graph.g2o").string();
     outputs.solved = &*graph;
     outputs.report = &row.report;
-    outputs.options = &options;
     outputs.metrics = MetricsJson(row.metrics);
     outputs.warnings = build_report.warnings;
     for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *gt)) {

@@ -126,7 +126,6 @@ int RunSolve(int argc, char** argv) {
   }
   outputs.solved = &*graph;
   outputs.report = &*report;
-  outputs.options = &options;
   if (ground_truth) {
     outputs.metrics = MetricsJson(ComputeMetrics(*graph, *ground_truth));
     for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *ground_truth)) {

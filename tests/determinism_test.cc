@@ -39,7 +39,6 @@ fs::path SolveInto(const std::string& name) {
   outputs.input = graph_path.string();
   outputs.solved = &*graph;
   outputs.report = &*report;
-  outputs.options = &options;
   // The pid keeps concurrent runs of the suite (release and sanitizer builds) apart.
   const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
   EXPECT_TRUE(WriteSolveOutputs(dir.string(), outputs).ok());

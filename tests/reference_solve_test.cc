@@ -46,7 +46,6 @@ TEST_P(ReferenceSolveTest, ReachesTheOptimumAndMatchesTightExact) {
   outputs.input = reference.graph_path;
   outputs.solved = &*graph;
   outputs.report = &*report;
-  outputs.options = &options;
   const fs::path gt_path = fs::path(reference.graph_path).parent_path().parent_path() / "gt.txt";
   if (fs::exists(gt_path)) {
     Expected<GroundTruth> gt = ReadGroundTruth(gt_path.string());

@@ -27,7 +27,6 @@ struct SolveOutputs {
   std::string input;                    // the graph file, as given
   const Graph* solved = nullptr;        // at the optimised values
   const SolveReport* report = nullptr;
-  const SolverOptions* options = nullptr;
   // object_poses.csv rows: the L variables of an object-centric graph, or the poses composed
   // from motions and ground truth for a world-centric one (SPEC §4, §5). Empty: header only.
   std::vector<ObjectPoseRow> object_poses;
