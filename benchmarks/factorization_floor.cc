@@ -22,6 +22,7 @@
 
 #include "dynslam/graph_io.h"
 #include "dynslam/solver.h"
+#include "src/openmp_thread_cap.h"
 
 namespace dynslam {
 namespace {
@@ -77,6 +78,7 @@ Row FactorCholmod(const SparseMatrix& a, bool supernodal, int repeat) {
   view.sorted = 1;
   view.packed = 1;
   cholmod_factor* factor = cholmod_analyze(&view, &common);
+  const ScopedOpenMpThreadCap one_thread(1);  // as `dynslam solve` runs CHOLMOD
   const double seconds =
       MedianSeconds(repeat, [&] { cholmod_factorize(&view, factor, &common); });
   if (common.status != CHOLMOD_OK) std::fprintf(stderr, "warning: CHOLMOD status %d\n", common.status);

@@ -22,6 +22,7 @@
 #include "cost_functions/pose_between_error.h"
 #include "cost_functions/pose_prior_error.h"
 #include "dynslam/se3_manifold.h"
+#include "src/openmp_thread_cap.h"
 
 namespace dynslam {
 namespace {
@@ -537,7 +538,10 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   ConvergenceRecorder recorder(options);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
-  ceres::Solve(ceres_options, &assembly.problem(), &summary);
+  {
+    const ScopedOpenMpThreadCap cap(options.threads);
+    ceres::Solve(ceres_options, &assembly.problem(), &summary);
+  }
 
   report.convergence = recorder.TakeRows();
   for (StepRecord& row : report.convergence) row.time_s -= summary.preprocessor_time_in_seconds;
