@@ -68,10 +68,10 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     {"auto", "sparse_schur", "sparse_normal_cholesky", "iterative_schur",
                      "dense_schur"},
                     "linear solver of each step; the Schur solvers eliminate points first; auto: "
-                    "sparse_normal_cholesky for graphs with points, sparse_schur for pose graphs");
+                    "sparse_normal_cholesky");
   parser->AddChoice("sparse-backend", &sparse_backend_, {"auto", "suitesparse", "eigen"},
-                    "sparse Cholesky library (CHOLMOD or Eigen's SimplicialLDLT); auto: eigen for "
-                    "graphs with points, suitesparse for pose graphs");
+                    "sparse Cholesky library (CHOLMOD or Eigen's SimplicialLDLT); auto: "
+                    "suitesparse when Ceres has it, else eigen");
   parser->AddInt("threads", &threads_, "threads for evaluation and linear algebra", 1, 256);
   parser->AddInt("max-iterations", &max_iterations_, "most linear solves", 0, 1000000);
   parser->AddDouble("function-tolerance", &function_tolerance_,
@@ -82,7 +82,8 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "stop when the step is this small relative to the parameters", 0, 1);
   parser->AddDouble("initial-lambda", &initial_lambda_,
                     "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
-                    "radius)", 1e-16, 1e16);
+                    "radius); 0: 1e-6 for graphs with points, 1e-10 for pose graphs",
+                    0, 1e16);
   parser->AddInt("nonmonotonic-steps", &nonmonotonic_steps_,
                  "accept up to N consecutive steps that raise the cost (Ceres's non-monotonic "
                  "steps); -1: 5 when the graph has kinematic edges (oc_b, oc_c), else 0",

@@ -187,13 +187,16 @@ TEST(SolverTest, NamesRoundTrip) {
 }
 
 TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
-  // Points and kinematic edges: LM, sparse normal Cholesky, Eigen.
+  // Every graph: sparse normal Cholesky on CHOLMOD (this Ceres has SuiteSparse).
+  // Points and kinematic edges: LM, first damping 1e-6, non-monotonic steps.
   Graph kinematic = Read(kObjectCentric);
   Expected<SolveReport> report = Solve(SolverOptions{}, &kinematic);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
   EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
-  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kEigen);
+  EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kSuiteSparse);
+  EXPECT_EQ(report->options_used.initial_lambda, 1e-6);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 5);
 
   // Points, no kinematic edge: dogleg.
   Graph with_points = Read(kObjectCentric);
@@ -202,13 +205,16 @@ TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
   EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
 
+  // Pose graph: LM starting nearly at Gauss–Newton.
   Graph pose_graph = Read(kTwoPoses);
   report = Solve(SolverOptions{}, &pose_graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
-  EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseSchur);
+  EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
   EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kSuiteSparse);
+  EXPECT_EQ(report->options_used.initial_lambda, 1e-10);
 
   SolverOptions options;
   options.minimizer = MinimizerType::kDogleg;

@@ -20,11 +20,11 @@
 
 namespace dynslam {
 
-// kAuto (the defaults) chooses per graph (ResolveAuto): for graphs with point variables (every
-// dynamic SLAM formulation) sparse normal Cholesky on Eigen, with Powell's dogleg unless the
-// graph has kinematic edges (oc_b, oc_c: Levenberg–Marquardt); for pose graphs LM with sparse
-// Schur on SuiteSparse — per class, the fastest to the optimum in the benchmarks that also stays
-// out of the poor basins seen on simulated scenes (docs/SOLVER.md, docs/BENCHMARKS.md).
+// kAuto (the defaults) chooses per graph (ResolveAuto): sparse normal Cholesky on SuiteSparse
+// (Eigen if this Ceres lacks it) for every graph; Powell's dogleg for graphs with point variables
+// and no kinematic edge (wc, oc_a), Levenberg–Marquardt for the others (oc_b, oc_c, pose graphs)
+// — per class, the fastest to the optimum in the benchmarks that also stays out of the poor
+// basins seen on simulated scenes (docs/SOLVER.md, docs/BENCHMARKS.md).
 enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
 enum class LinearSolverType {
   kSparseSchur,
@@ -58,12 +58,16 @@ struct SolverOptions {
   int threads = 1;
   int max_iterations = 500;  // GTSAM tight profile's maxIterations (SPEC §6)
   // Ceres's tolerances (Solver::Options); tighter than Ceres's defaults so that a solve lands
-  // on the optimum to ~1e-10 relative (the GTSAM tight_exact reference, SPEC §6).
+  // on the optimum to ~1e-10 relative (the GTSAM tight_exact reference, SPEC §6). A function
+  // tolerance of 1e-10 saves up to half the steps but leaves motions 0.1–0.2 mm from
+  // tight_exact on kitti_0003 wc and synthetic oc_c (docs/SOLVER.md).
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
-  // The first LM damping (Ceres: 1 / initial_trust_region_radius; its default is 1e-4).
-  double initial_lambda = 1e-4;
+  // The first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial_trust_region_radius; its
+  // default is 1e-4). 0 (auto): 1e-6 for graphs with points, 1e-10 for pose graphs, where the
+  // first step is then nearly Gauss–Newton's (docs/SOLVER.md has the measurements).
+  double initial_lambda = 0;
   // Ceres's non-monotonic steps: accept a step that raises the cost when the cost is still below
   // the best of the last N accepted steps. −1 (auto): N = 5 when the graph has kinematic edges
   // (oc_b, oc_c), where it takes 3–5× fewer steps to the optimum on KITTI scenes, else 0 (off:
@@ -129,7 +133,7 @@ struct SolveReport {
 // The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
 // Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
 // `options` with every auto field resolved for `graph`: minimizer, linear solver and sparse
-// backend (MinimizerType::kAuto), nonmonotonic_steps (−1).
+// backend (MinimizerType::kAuto), initial_lambda (0), nonmonotonic_steps (−1).
 SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph);
 
 Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options = {});
