@@ -135,7 +135,7 @@ int Run(int argc, char** argv) {
   }
   const std::string path = argv[1];
   int repeat = 5;
-  double lambda = 1e-4;  // Ceres's first LM damping (1 / initial_trust_region_radius)
+  double lambda = 1e-6;  // dynslam's first LM damping on graphs with points (solver.h)
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--repeat") {
