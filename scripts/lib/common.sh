@@ -8,7 +8,7 @@ DYNSLAM_JOBS="${DYNSLAM_JOBS:-2}"
 # Every package dynslam needs to build, test and plot (docs/DEPENDENCIES.md says why).
 DYNSLAM_PACKAGES=(
   cmake g++ make
-  libceres-dev libeigen3-dev libsuitesparse-dev libgoogle-glog-dev libgflags-dev
+  libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-serial libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib
 )
