@@ -166,34 +166,34 @@ def fastest_table(runs):
 def scaling_section(rows, plot_path):
     if not rows:
         return ["(no scaling runs: `benchmarks/sweep.py --scaling`)"]
-    lines = ["| formulation | frames | variables | steps | s per step | total (s) | peak RSS (MB) | "
-             "KB per variable |", "|---|---|---|---|---|---|---|---|"]
-    by_formulation = collections.defaultdict(list)
+    lines = ["| scene | formulation | frames | variables | steps | s per step | total (s) | "
+             "peak RSS (MB) | KB per variable |", "|---|---|---|---|---|---|---|---|---|"]
+    series = collections.defaultdict(list)  # (scene, formulation) -> rows
     for r in rows:
-        by_formulation[r["formulation"]].append(r)
+        scene = "synthetic" if r["sequence"] == "synthetic" else f"KITTI {r['sequence']}"
+        series[(scene, r["formulation"])].append(r)
         kb = number(r["peak_rss_mb"]) * 1024 / number(r["variables"])
-        lines.append(f"| {r['formulation']} | {r['frames']} | {r['variables']} | {r['steps']} | "
-                     f"{fmt(number(r['time_per_step']))} | {fmt(number(r['time_total']))} | "
-                     f"{r['peak_rss_mb']} | {kb:.2f} |")
+        lines.append(f"| {scene} | {r['formulation']} | {r['frames']} | {r['variables']} | "
+                     f"{r['steps']} | {fmt(number(r['time_per_step']))} | "
+                     f"{fmt(number(r['time_total']))} | {r['peak_rss_mb']} | {kb:.2f} |")
     lines += ["", "Fitted exponents (least squares of log time against log variables):", ""]
-    for formulation, rs in by_formulation.items():
+    for (scene, formulation), rs in series.items():
         xs = [number(r["variables"]) for r in rs]
         per_step = fit_exponent(xs, [number(r["time_per_step"]) for r in rs])
         total = fit_exponent(xs, [number(r["time_total"]) for r in rs])
-        lines.append(f"- {formulation}: time per step ∝ n^{per_step:.2f}, total time ∝ "
+        lines.append(f"- {scene} {formulation}: time per step ∝ n^{per_step:.2f}, total time ∝ "
                      f"n^{total:.2f} ({fmt(min(xs))}–{fmt(max(xs))} variables)")
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(6, 4))
-        for formulation, rs in by_formulation.items():
+        for (scene, formulation), rs in series.items():
             ax.loglog([number(r["variables"]) for r in rs],
-                      [number(r["time_per_step"]) for r in rs], "o-", label=f"{formulation}: per step")
-            ax.loglog([number(r["variables"]) for r in rs],
-                      [number(r["time_total"]) for r in rs], "s--", label=f"{formulation}: total")
+                      [number(r["time_per_step"]) for r in rs], "o-",
+                      label=f"{scene} {formulation}: per step")
         ax.set_xlabel("variables")
-        ax.set_ylabel("seconds")
+        ax.set_ylabel("seconds per step")
         ax.legend()
         ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()

@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Convergence benchmarks (issue 13): solves graph files with `dynslam solve` under a grid of
 solver configurations and writes one CSV row per run; times the factorisation floor of each graph
-(benchmarks/factorization_floor) and, with --scaling, solves simulated KITTI scenes of growing
-length. benchmarks/report.py turns the CSVs into docs/BENCHMARKS.md.
+(benchmarks/factorization_floor) and, with --scaling, solves simulated scenes of growing length
+(KITTI 0020 and the synthetic scene). benchmarks/report.py turns the CSVs into docs/BENCHMARKS.md.
 
     benchmarks/sweep.py                         # the reference graphs, every configuration
     benchmarks/sweep.py --quick                 # linear solvers at the defaults only
     benchmarks/sweep.py --graphs a.g2o b.g2o --configs default snc_eigen
-    benchmarks/sweep.py --scaling               # also the scaling runs (KITTI 0020, at most
-                                                # 25 steps each: time per step and peak memory)
+    benchmarks/sweep.py --scaling               # also the scaling runs (KITTI 0020 and synthetic,
+                                                # at most 25 steps each: time per step and peak
+                                                # memory)
+    benchmarks/sweep.py --scaling-only          # the scaling runs alone (scaling.csv)
 
 Outputs (default out/benchmarks/): runs.csv, floor.csv, scaling.csv. Every run is on one graph
 file, the same file for every configuration. Time to a target cost is read from the run's
@@ -172,12 +174,13 @@ def floor_rows(floor_binary, graph, repeat):
     return list(csv.DictReader(out.splitlines()))
 
 
-def scaling_rows(dynslam, kitti, sequence, lengths, formulations, max_steps, work):
+def scaling_rows(dynslam, scenes, formulations, max_steps, work):
+    """Simulates each scene (sequence, frames, `dynslam simulate` flags), builds each formulation
+    and solves it with the defaults for at most `max_steps` linear solves."""
     rows = []
-    for frames in lengths:
+    for sequence, frames, simulate_flags in scenes:
         prefix = work / f"seq{sequence}_{frames}"
-        subprocess.run([dynslam, "simulate", "--kitti", str(kitti), "--seq", sequence,
-                        "--frames", f"0:{frames}", "--seed", "1", "--out", str(prefix)],
+        subprocess.run([dynslam, "simulate"] + simulate_flags + ["--seed", "1", "--out", str(prefix)],
                        check=True, capture_output=True)
         for formulation in formulations:
             built = work / f"seq{sequence}_{frames}_{formulation}.g2o"
@@ -192,6 +195,9 @@ def scaling_rows(dynslam, kitti, sequence, lengths, formulations, max_steps, wor
             print(f"  scaling {sequence} frames 0:{frames} {formulation}: "
                   f"{row['variables']} variables, {row['steps']} steps, "
                   f"{row['time_total']:.2f} s, {row['peak_rss_mb']} MB", file=sys.stderr)
+            built.unlink()
+        for suffix in (".g2o", ".gt.txt"):
+            pathlib.Path(f"{prefix}{suffix}").unlink()
     return rows
 
 
@@ -211,8 +217,13 @@ def main():
     parser.add_argument("--quick", action="store_true",
                         help="only dynslam's LM settings, one thread")
     parser.add_argument("--scaling", action="store_true", help="also the scaling runs")
+    parser.add_argument("--scaling-only", action="store_true",
+                        help="only the scaling runs (runs.csv and floor.csv are left as they are)")
     parser.add_argument("--scaling-lengths", nargs="*", type=int,
-                        default=[50, 100, 200, 400, 837])
+                        default=[50, 100, 200, 400, 837], help="KITTI 0020 frames")
+    parser.add_argument("--scaling-synthetic-frames", nargs="*", type=int,
+                        default=[300, 1200, 4800, 12800],
+                        help="frames of the synthetic scene (12800: about 700k wc variables)")
     parser.add_argument("--scaling-formulations", nargs="*", default=["wc", "oc_b"])
     parser.add_argument("--scaling-max-steps", type=int, default=25,
                         help="linear solves per scaling run (time per step is the measure; wc "
@@ -237,7 +248,9 @@ def main():
                      "factorization_floor)")
     graphs = [pathlib.Path(g) for g in args.graphs] if args.graphs else sorted(
         pathlib.Path(args.reference).glob("*/graphs/*.g2o"))
-    if not graphs:
+    if args.scaling_only:
+        graphs, args.scaling = [], True
+    elif not graphs:
         sys.exit(f"no graphs (give --graphs, or --reference DIR with */graphs/*.g2o)")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -263,18 +276,23 @@ def main():
             if floors:
                 write_csv(out / "floor.csv", floors, list(floors[0].keys()))
         if args.scaling:
-            rows = scaling_rows(dynslam, args.kitti, "0020", args.scaling_lengths,
-                                args.scaling_formulations, args.scaling_max_steps, work)
+            scenes = [("0020", n, ["--kitti", args.kitti, "--seq", "0020", "--frames", f"0:{n}"])
+                      for n in args.scaling_lengths]
+            scenes += [("synthetic", n, ["--synthetic", "--synthetic-frames", str(n)])
+                       for n in args.scaling_synthetic_frames]
+            rows = scaling_rows(dynslam, scenes, args.scaling_formulations,
+                                args.scaling_max_steps, work)
             write_csv(out / "scaling.csv", rows, ["sequence", "frames"] + FIELDS)
     # Every sweep that wrote into OUT, in order (report.py quotes them as the reproduction).
     sweeps = []
-    if args.append and (out / "meta.json").exists():
+    if (args.append or args.scaling_only) and (out / "meta.json").exists():
         sweeps = json.loads((out / "meta.json").read_text()).get("sweeps", [])
     sweeps.append({"command": " ".join(["benchmarks/sweep.py"] + sys.argv[1:]),
                    "seconds": round(time.monotonic() - started)})
     (out / "meta.json").write_text(json.dumps({"sweeps": sweeps}, indent=1) + "\n")
-    print(f"wrote {out}/runs.csv, floor.csv, meta.json" + (", scaling.csv" if args.scaling else ""),
-          file=sys.stderr)
+    written = ([] if args.scaling_only else ["runs.csv", "floor.csv"]) + ["meta.json"] + (
+        ["scaling.csv"] if args.scaling else [])
+    print(f"wrote {out}/: {', '.join(written)}", file=sys.stderr)
 
 
 if __name__ == "__main__":
