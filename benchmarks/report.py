@@ -236,8 +236,10 @@ def main():
         f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
         "",
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
-        "`docs/benchmarks/data/`." + (" The data was made in several sweeps, listed in order."
-                                      if len(sweeps) > 1 else "") + ")",
+        "`docs/benchmarks/data/`." + (
+            " The data was made by these sweeps in order; a `--scaling-only` sweep leaves runs.csv "
+            "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it."
+            if len(sweeps) > 1 else "") + ")",
         "",
         f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "
         "nothing else running. GTSAM's times are those stored in the reference set "
@@ -270,9 +272,11 @@ def main():
         "",
         *fastest_table(runs),
         "",
-        "## Scaling (simulated KITTI 0020, growing frame ranges; the defaults)",
+        "## Scaling (simulated KITTI 0020 and synthetic scenes of growing length; the defaults)",
         "",
-        "`dynslam simulate --kitti data/kitti_tracking --seq 0020 --frames 0:N --seed 1`, `dynslam "
+        "`dynslam simulate --kitti data/kitti_tracking --seq 0020 --frames 0:N --seed 1` (at most "
+        "837 frames: the whole sequence) or `dynslam simulate --synthetic --synthetic-frames N "
+        "--seed 1` (the synthetic scene stretched to N frames, for the largest problems), `dynslam "
         "build` per formulation, then `dynslam solve` with the defaults (wc: dogleg, oc_b: LM; "
         "sparse normal Cholesky on CHOLMOD) and at most 25 linear solves "
         "(`--scaling-max-steps`): time per step is the measure; a run with fewer steps "

@@ -233,7 +233,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=5, help="factorisations per floor timing")
     parser.add_argument("--out", default=str(ROOT / "out" / "benchmarks"))
     parser.add_argument("--append", action="store_true",
-                        help="add rows to OUT/runs.csv instead of replacing it")
+                        help="add rows to OUT/runs.csv and scaling.csv instead of replacing them")
     parser.add_argument("--no-floor", action="store_true", help="skip the factorisation floor")
     parser.add_argument("--timeout", type=float, default=300,
                         help="seconds before a solve is stopped (row: termination timeout)")
@@ -280,8 +280,12 @@ def main():
                       for n in args.scaling_lengths]
             scenes += [("synthetic", n, ["--synthetic", "--synthetic-frames", str(n)])
                        for n in args.scaling_synthetic_frames]
-            rows = scaling_rows(dynslam, scenes, args.scaling_formulations,
-                                args.scaling_max_steps, work)
+            rows = []
+            if args.append and (out / "scaling.csv").exists():
+                with open(out / "scaling.csv", newline="") as f:
+                    rows = list(csv.DictReader(f))
+            rows += scaling_rows(dynslam, scenes, args.scaling_formulations,
+                                 args.scaling_max_steps, work)
             write_csv(out / "scaling.csv", rows, ["sequence", "frames"] + FIELDS)
     # Every sweep that wrote into OUT, in order (report.py quotes them as the reproduction).
     sweeps = []
