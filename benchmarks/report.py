@@ -238,7 +238,8 @@ def main():
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
         "`docs/benchmarks/data/`." + (
             " The data was made by these sweeps in order; a `--scaling-only` sweep leaves runs.csv "
-            "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it."
+            "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it. On "
+            "the current code the first command alone makes every row."
             if len(sweeps) > 1 else "") + ")",
         "",
         f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "

@@ -222,8 +222,8 @@ def main():
     parser.add_argument("--scaling-lengths", nargs="*", type=int,
                         default=[50, 100, 200, 400, 837], help="KITTI 0020 frames")
     parser.add_argument("--scaling-synthetic-frames", nargs="*", type=int,
-                        default=[300, 1200, 4800, 12800],
-                        help="frames of the synthetic scene (12800: about 700k wc variables)")
+                        default=[300, 1200, 4800, 12800, 25600],
+                        help="frames of the synthetic scene (25600: 763k wc variables, 6.5 GB)")
     parser.add_argument("--scaling-formulations", nargs="*", default=["wc", "oc_b"])
     parser.add_argument("--scaling-max-steps", type=int, default=25,
                         help="linear solves per scaling run (time per step is the measure; wc "
