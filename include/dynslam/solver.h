@@ -130,12 +130,12 @@ struct SolveReport {
   std::vector<std::string> warnings;
 };
 
-// The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
-// Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
 // `options` with every auto field resolved for `graph`: minimizer, linear solver and sparse
 // backend (MinimizerType::kAuto), initial_lambda (0), nonmonotonic_steps (−1).
 SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph);
 
+// The SPEC §1.5 cost of the graph at its current values, in total (sum) and per edge kind.
+// Needs roles assigned. Errors for graphs the solver would refuse (bad references, …).
 Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& options = {});
 
 // The Jacobian of the whitened residuals (SPEC §1.5) at the graph's values, taken in the
