@@ -108,8 +108,7 @@ def floor_table(runs, floors):
             any_row = cells[(matrix, "cholmod_simplicial")]
             step = number(default[graph]["time_per_step"]) if graph in default else None
             fastest = min(t for t in times.values() if t)
-            # The default factors the damped normal matrix on graphs with points (sparse normal
-            # Cholesky); on pose graphs the floor's reduced matrix is the normal matrix.
+            # The default (sparse normal Cholesky) factors the damped normal matrix on every graph.
             ratio = step / fastest if step and matrix == "normal" else None
             lines.append(
                 f"| {short(graph)} | {matrix} | {any_row['n']} | {any_row['nnz_factor']} | "
@@ -154,12 +153,15 @@ def fastest_table(runs):
         if not reached:
             continue
         best = min(reached, key=to_optimum)
-        best_t1 = min((r for r in reached if str(r["threads"]) == "1"), key=to_optimum)
+        best_t1 = min((r for r in reached if str(r["threads"]) == "1"), key=to_optimum,
+                      default=None)
         default = next((r for r in rows if r["config"] == "default"), None)
         default_time = to_optimum(default) if default else None
+        t1_time = to_optimum(best_t1) if best_t1 else None
         lines.append(f"| {short(graph)} | {best['config']} | {fmt(to_optimum(best))} | "
-                     f"{best_t1['config']} | {fmt(to_optimum(best_t1))} | {fmt(default_time)} | "
-                     f"{fmt(default_time / to_optimum(best_t1), 2) if default_time else '—'} |")
+                     f"{best_t1['config'] if best_t1 else '—'} | {fmt(t1_time)} | "
+                     f"{fmt(default_time)} | "
+                     f"{fmt(default_time / t1_time, 2) if default_time and t1_time else '—'} |")
     return lines
 
 
