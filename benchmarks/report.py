@@ -13,7 +13,6 @@ import math
 import os
 import pathlib
 import platform
-import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -52,9 +51,7 @@ def machine():
                     break
     except OSError:
         pass
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
-    return f"{model or platform.processor()}, {os.cpu_count()} cores; commit {commit}"
+    return f"{model or platform.processor()}, {os.cpu_count()} cores"
 
 
 def fit_exponent(xs, ys):
@@ -234,7 +231,8 @@ def main():
         f"hand. Reproduce ({duration}):",
         "",
         "    cmake --build build/release --target dynslam_cli factorization_floor",
-        *[f"    {s['command']}" for s in sweeps],
+        *[f"    {s['command']}  # {s.get('date', 'date not recorded')}, commit "
+          f"{s.get('commit', 'not recorded')}" for s in sweeps],
         f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
         "",
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
@@ -244,7 +242,8 @@ def main():
             "the current code the first command alone makes every row."
             if len(sweeps) > 1 else "") + ")",
         "",
-        f"Measured {datetime.date.today().isoformat()} on {machine()}, one run per configuration, "
+        f"Measured on {machine()} (this page generated {datetime.date.today().isoformat()}; each "
+        "sweep's date and commit are beside its command above), one run per configuration, "
         "nothing else running. GTSAM's times are those stored in the reference set "
         "(`../shared/reference/*/gtsam/*/released/summary.json`, GTSAM 4.2 LM on a 2-core machine "
         "of the same kind), so the ratios compare two machines of one kind, not one run.",

@@ -20,6 +20,7 @@ target. Targets come from the reference set when the graph is one of its graphs:
 """
 import argparse
 import csv
+import datetime
 import json
 import os
 import pathlib
@@ -201,6 +202,13 @@ def scaling_rows(dynslam, scenes, formulations, max_steps, work):
     return rows
 
 
+def source_version():
+    """The commit the sweep runs on (`git describe --always --dirty`), or "unknown"."""
+    result = subprocess.run(["git", "-C", str(ROOT), "describe", "--always", "--dirty"],
+                            capture_output=True, text=True)
+    return result.stdout.strip() or "unknown"
+
+
 def write_csv(path, rows, fields):
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
@@ -260,6 +268,7 @@ def main():
         with open(out / "runs.csv", newline="") as f:
             runs = list(csv.DictReader(f))
     started = time.monotonic()
+    version, date = source_version(), datetime.date.today().isoformat()
     with tempfile.TemporaryDirectory() as tmp:
         work = pathlib.Path(tmp)
         for graph in graphs:
@@ -292,7 +301,8 @@ def main():
     if (args.append or args.scaling_only) and (out / "meta.json").exists():
         sweeps = json.loads((out / "meta.json").read_text()).get("sweeps", [])
     sweeps.append({"command": " ".join(["benchmarks/sweep.py"] + sys.argv[1:]),
-                   "seconds": round(time.monotonic() - started)})
+                   "seconds": round(time.monotonic() - started), "commit": version,
+                   "date": date})
     (out / "meta.json").write_text(json.dumps({"sweeps": sweeps}, indent=1) + "\n")
     written = ([] if args.scaling_only else ["runs.csv", "floor.csv"]) + ["meta.json"] + (
         ["scaling.csv"] if args.scaling else [])
