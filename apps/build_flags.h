@@ -18,7 +18,7 @@ class BuildFlags {
  private:
   BuildOptions defaults_;
   int64_t min_object_frames_;
-  std::string object_init_ = "align";
+  std::string object_init_ = ObjectInitName(BuildOptions{}.object_init);
   std::string motion_init_ = "frontend";
   double kinematic_sigma_;
 };

@@ -391,35 +391,48 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
   };
   std::map<int64_t, Pose> poses;
   std::map<const Tracklet*, Eigen::Vector3d> object_points;
+  // SPEC §3.3: the first frame from the ground truth (else the centroid), later frames by the
+  // object_init rule.
+  auto from_truth = [&](int64_t k, Pose* pose) {
+    const Pose* x_gt = gt_ != nullptr ? gt_->Camera(k) : nullptr;
+    const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
+    auto camera = camera_of_frame_.find(k);
+    if (x_gt == nullptr || l_gt == nullptr || camera == camera_of_frame_.end()) return false;
+    // The true object pose seen from its camera, placed in the drifted initial world.
+    *pose = Compose(Compose(fe_.Find(camera->second)->pose(), Inverse(*x_gt)), *l_gt);
+    ++initialised_from_gt_;
+    return true;
+  };
+  auto chained = [&](int64_t k) { return Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1)); };
+  auto aligned = [&](int64_t k) {
+    std::vector<Eigen::Vector3d> from, to;
+    for (const auto& [t, p] : observed[k]) {
+      auto m = object_points.find(t);
+      if (m == object_points.end()) continue;  // begins at k
+      from.push_back(m->second);
+      to.push_back(fe_.Find(p)->point());
+    }
+    Pose pose;
+    return Align(from, to, &pose) ? pose : chained(k);
+  };
   for (int64_t k = segment.first; k <= segment.last; ++k) {
     Pose pose;
-    if (options_.object_init == ObjectInit::kCentroid) {
+    const ObjectInit rule = options_.object_init;
+    if (rule == ObjectInit::kCentroid) {
       pose = centroid(k);
+    } else if (k == segment.first && options_.dsc_object_centric_noise &&
+               gt_ != nullptr && gt_->Object(j, k) != nullptr) {
+      pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(),
+                                           gt_->Object(j, k)->translation());
+      ++initialised_from_gt_;
     } else if (k == segment.first) {
-      const Pose* x_gt = gt_ != nullptr ? gt_->Camera(k) : nullptr;
-      const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
-      auto camera = camera_of_frame_.find(k);
-      if (options_.dsc_object_centric_noise && l_gt != nullptr) {
-        pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), l_gt->translation());
-        ++initialised_from_gt_;
-      } else if (x_gt != nullptr && l_gt != nullptr && camera != camera_of_frame_.end()) {
-        // The true object pose seen from its camera, placed in the drifted initial world.
-        pose = Compose(Compose(fe_.Find(camera->second)->pose(), Inverse(*x_gt)), *l_gt);
-        ++initialised_from_gt_;
-      } else {
-        pose = centroid(k);
-      }
+      if (!from_truth(k, &pose)) pose = centroid(k);
+    } else if (rule == ObjectInit::kTruth) {
+      if (!from_truth(k, &pose)) pose = chained(k);
+    } else if (rule == ObjectInit::kAlign) {
+      pose = aligned(k);
     } else {
-      std::vector<Eigen::Vector3d> from, to;
-      for (const auto& [t, p] : observed[k]) {
-        auto m = object_points.find(t);
-        if (m == object_points.end()) continue;  // begins at k
-        from.push_back(m->second);
-        to.push_back(fe_.Find(p)->point());
-      }
-      if (!Align(from, to, &pose)) {
-        pose = Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
-      }
+      pose = chained(k);
     }
     poses[k] = pose;
     for (const auto& [t, p] : observed[k]) {
@@ -564,8 +577,8 @@ Expected<Graph> Builder::Build(Formulation formulation) {
     int64_t poses = 0;
     for (const auto& [segment, ids] : segment_pose_ids_) poses += static_cast<int64_t>(ids.size());
     Say("object poses: " + std::to_string(poses) + ", " + std::to_string(initialised_from_gt_) +
-        " initialised from ground truth (--object-init " +
-        (options_.object_init == ObjectInit::kAlign ? "align" : "centroid") + ")");
+        " initialised from ground truth (--object-init " + ObjectInitName(options_.object_init) +
+        ")");
   }
   // The built graph must read back as a consistent labelled file (SPEC §1.4).
   if (Status s = AssignRoles(out, name_); !s.ok()) return s.error();
@@ -607,6 +620,26 @@ bool ParseFormulation(const std::string& text, Formulation* formulation) {
   for (const Formulation f : kAllFormulations) {
     if (text == FormulationName(f)) {
       *formulation = f;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* ObjectInitName(ObjectInit rule) {
+  switch (rule) {
+    case ObjectInit::kMotion: return "motion";
+    case ObjectInit::kAlign: return "align";
+    case ObjectInit::kTruth: return "truth";
+    case ObjectInit::kCentroid: return "centroid";
+  }
+  return "?";
+}
+
+bool ParseObjectInit(const std::string& text, ObjectInit* rule) {
+  for (const ObjectInit r : kAllObjectInits) {
+    if (text == ObjectInitName(r)) {
+      *rule = r;
       return true;
     }
   }

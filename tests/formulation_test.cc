@@ -136,8 +136,10 @@ TEST_P(FormulationReferenceTest, BuildsTheReferenceGraph) {
   Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
   ASSERT_TRUE(gt.ok()) << gt.error().ToString();
   BuildReport report;
-  Expected<Graph> built = BuildFormulation(*front_end, GetParam().formulation, BuildOptions{},
-                                           &*gt, &report, "frontend.g2o");
+  BuildOptions options;
+  options.object_init = ObjectInit::kAlign;  // the rule the reference graphs were built with
+  Expected<Graph> built = BuildFormulation(*front_end, GetParam().formulation, options, &*gt,
+                                           &report, "frontend.g2o");
   ASSERT_TRUE(built.ok()) << built.error().ToString();
   Expected<Graph> expected = ReadGraph((scene / "graphs" / (name + ".g2o")).string());
   ASSERT_TRUE(expected.ok()) << expected.error().ToString();
@@ -524,6 +526,111 @@ TEST(FormulationEdgeCaseTest, SyntheticSceneSegmentsWithExactCounts) {
     EXPECT_EQ(labels[e.motion].object, labels[e.pose_curr].object);
   }
   EXPECT_EQ(CountEdgesByKind(*oc_b)[static_cast<int>(EdgeKind::kSmoothing)], 72);  // 74 − 2 of object 3
+}
+
+}  // namespace
+}  // namespace dynslam
+
+namespace dynslam {
+namespace {
+
+// SPEC §3.3 object_init on the synthetic scene: what each rule puts in the later object poses.
+class ObjectInitTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path scene = fs::path(testing::ReferenceDir()) / "synthetic";
+    if (!fs::exists(scene / "frontend.g2o") || !fs::exists(scene / "gt.txt")) {
+      GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
+    }
+    Expected<Graph> front_end = ReadGraph((scene / "frontend.g2o").string());
+    Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
+    ASSERT_TRUE(front_end.ok() && gt.ok());
+    front_end_ = std::move(*front_end);
+    gt_ = std::move(*gt);
+  }
+  Graph Build(ObjectInit rule) {
+    BuildOptions options;
+    options.object_init = rule;
+    Expected<Graph> built = BuildFormulation(front_end_, Formulation::kObjectCentricB, options, &gt_, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error().ToString();
+    return built.ok() ? std::move(*built) : Graph{};
+  }
+  Graph front_end_;
+  GroundTruth gt_;
+};
+
+// Largest rotation (rad) and translation (m) difference between two poses.
+std::pair<double, double> Difference(const Pose& a, const Pose& b) {
+  const Pose e = Compose(Inverse(a), b);
+  return {Eigen::AngleAxisd(e.rotation()).angle(), e.translation().norm()};
+}
+
+TEST_F(ObjectInitTest, MotionIsTheDefaultAndChainsTheInitialMotions) {
+  EXPECT_EQ(BuildOptions{}.object_init, ObjectInit::kMotion);
+  const Graph g = Build(ObjectInit::kMotion);
+  ASSERT_EQ(g.kinematic_edges.size(), 77u);
+  for (const KinematicEdge& e : g.kinematic_edges) {
+    const Pose chained = Compose(g.Find(e.motion)->pose(), g.Find(e.pose_prev)->pose());
+    const auto [rotation, translation] = Difference(chained, g.Find(e.pose_curr)->pose());
+    EXPECT_LT(rotation, 1e-12) << "pose " << e.pose_curr;
+    EXPECT_LT(translation, 1e-9) << "pose " << e.pose_curr;
+  }
+  Expected<CostByKind> cost = EvaluateCost(g);
+  ASSERT_TRUE(cost.ok());
+  EXPECT_LT((*cost)[static_cast<int>(EdgeKind::kKinematic)], 1e-15);
+}
+
+TEST_F(ObjectInitTest, TruthPutsEveryPoseAtTheTrueObjectSeenFromItsCamera) {
+  const Graph g = Build(ObjectInit::kTruth);
+  std::map<int64_t, VertexId> camera_of_frame;
+  for (const auto& [id, v] : g.vertices) {
+    if (v.label.role == Role::kCamera) camera_of_frame[v.label.frame] = id;
+  }
+  int checked = 0;
+  for (const auto& [id, v] : g.vertices) {
+    if (v.label.role != Role::kObjectPose) continue;
+    const int64_t k = v.label.frame;
+    const Pose* l_gt = gt_.Object(v.label.object, k);
+    ASSERT_NE(l_gt, nullptr) << "the synthetic scene's truth has every object pose";
+    const Pose expected =
+        Compose(Compose(g.Find(camera_of_frame.at(k))->pose(), Inverse(*gt_.Camera(k))), *l_gt);
+    const auto [rotation, translation] = Difference(expected, v.pose());
+    EXPECT_LT(rotation, 1e-12) << "object " << v.label.object << " frame " << k;
+    EXPECT_LT(translation, 1e-9) << "object " << v.label.object << " frame " << k;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 82);  // the object poses of the five kept segments
+}
+
+TEST_F(ObjectInitTest, RulesDifferOnlyAfterASegmentsFirstFrame) {
+  const Graph motion = Build(ObjectInit::kMotion), align = Build(ObjectInit::kAlign),
+              truth = Build(ObjectInit::kTruth);
+  int later_frames_that_differ = 0;
+  for (const auto& [id, v] : motion.vertices) {
+    if (v.label.role != Role::kObjectPose) continue;
+    const bool first = std::any_of(motion.priors.begin(), motion.priors.end(),
+                                   [&](const PriorEdge& e) { return e.pose == id; });
+    for (const Graph* other : {&align, &truth}) {
+      const auto [rotation, translation] = Difference(v.pose(), other->Find(id)->pose());
+      if (first) {
+        EXPECT_LT(rotation + translation, 1e-12) << "first pose " << id;
+      } else if (rotation > 1e-6) {
+        ++later_frames_that_differ;
+      }
+    }
+  }
+  EXPECT_GT(later_frames_that_differ, 0) << "the rules are not all the same rule";
+}
+
+TEST(ObjectInitNameTest, NamesRoundTrip) {
+  for (const ObjectInit rule : kAllObjectInits) {
+    ObjectInit parsed = ObjectInit::kCentroid == rule ? ObjectInit::kMotion : ObjectInit::kCentroid;
+    ASSERT_TRUE(ParseObjectInit(ObjectInitName(rule), &parsed));
+    EXPECT_EQ(parsed, rule);
+  }
+  ObjectInit unchanged = ObjectInit::kAlign;
+  EXPECT_FALSE(ParseObjectInit("kabsch", &unchanged));
+  EXPECT_EQ(unchanged, ObjectInit::kAlign);
 }
 
 }  // namespace

@@ -24,13 +24,24 @@ inline constexpr Formulation kAllFormulations[] = {
 const char* FormulationName(Formulation formulation);  // "wc", "oc_a", "oc_b", "oc_c"
 bool ParseFormulation(const std::string& text, Formulation* formulation);
 
-enum class ObjectInit { kAlign, kCentroid };   // SPEC §3.3
+// Initial object poses after a segment's first frame (SPEC §3.3, §3.5):
+// kMotion  L_k = H_k · L_{k−1} with the initial motion: the kinematic edge starts at zero;
+// kAlign   rigid alignment of the object-frame points onto the initial world points (the rule the
+//          reference scenes' graphs were built with);
+// kTruth   every pose from the ground truth where it has the object (a study and test aid);
+// kCentroid every pose, the first included, at its points' centroid with identity rotation.
+enum class ObjectInit { kMotion, kAlign, kTruth, kCentroid };
+inline constexpr ObjectInit kAllObjectInits[] = {ObjectInit::kMotion, ObjectInit::kAlign,
+                                                 ObjectInit::kTruth, ObjectInit::kCentroid};
+const char* ObjectInitName(ObjectInit rule);  // "motion", "align", "truth", "centroid"
+bool ParseObjectInit(const std::string& text, ObjectInit* rule);
+
 enum class MotionInit { kFrontEnd, kIdentity };
 
 // SPEC §3.5.
 struct BuildOptions {
   int min_object_frames = 5;
-  ObjectInit object_init = ObjectInit::kAlign;
+  ObjectInit object_init = ObjectInit::kMotion;
   MotionInit motion_init = MotionInit::kFrontEnd;
   double kinematic_sigma = 0.01;  // information 1/σ² on all six components
   // Prior on the first pose of each segment, as variances (information = 1 / variance).
