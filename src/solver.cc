@@ -349,7 +349,9 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
 // (so the damping a step used is the radius reported before it).
 class ConvergenceRecorder : public ceres::IterationCallback {
  public:
-  explicit ConvergenceRecorder(const SolverOptions& options) : options_(options) {}
+  // `assembly` and `scratch` are used only when options.on_accepted_state is set.
+  ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch)
+      : options_(options), assembly_(assembly), scratch_(scratch) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (s.iteration == 0) {
@@ -365,6 +367,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     row.trial_cost = s.step_is_valid ? s.cost : kInfinity;
     row.accepted = s.step_is_successful;
     row.time_s = s.cumulative_time_in_seconds;  // preprocessing is subtracted after the solve
+    row.relative_decrease = s.step_is_valid ? s.relative_decrease : 0;
     rows_.push_back(row);
     if (s.step_is_successful) {
       ++accepted_;
@@ -372,6 +375,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     }
     radius_ = s.trust_region_radius;
     if (options_.on_step) options_.on_step(row);
+    if (s.step_is_successful && options_.on_accepted_state) {
+      assembly_->WriteBack(scratch_);
+      options_.on_accepted_state(row, *scratch_);
+    }
     return ceres::SOLVER_CONTINUE;
   }
 
@@ -379,6 +386,8 @@ class ConvergenceRecorder : public ceres::IterationCallback {
 
  private:
   const SolverOptions& options_;
+  const Assembly* assembly_;
+  Graph* scratch_;
   std::vector<StepRecord> rows_;
   double accepted_cost_ = 0;
   double radius_ = 1;
@@ -539,7 +548,12 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   std::string why_invalid;
   if (!ceres_options.IsValid(&why_invalid)) return Error{"", 0, "solver options: " + why_invalid};
 
-  ConvergenceRecorder recorder(options);
+  Graph scratch;
+  if (options.on_accepted_state) {
+    scratch = *graph;
+    ceres_options.update_state_every_iteration = true;
+  }
+  ConvergenceRecorder recorder(options, &assembly, &scratch);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
   {

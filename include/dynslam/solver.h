@@ -89,6 +89,9 @@ struct SolverOptions {
   std::array<RobustKernel, kNumEdgeKinds> kernels{};
   // Called after every linear solve Ceres reports (rejected ones included).
   std::function<void(const struct StepRecord&)> on_step;
+  // For analysis (benchmarks/convergence_probe): called after every accepted step with a copy of
+  // the graph holding the values reached. Costs a copy of every value per step; off when empty.
+  std::function<void(const struct StepRecord&, const Graph&)> on_accepted_state;
 };
 
 // One row of convergence.csv (SPEC §4).
@@ -100,6 +103,10 @@ struct StepRecord {
   double trial_cost = 0;  // at the trial point; +inf when the step was not valid
   bool accepted = false;
   double time_s = 0;  // since the minimiser started (problem set-up excluded)
+  // Not in convergence.csv (SPEC §4); for analysis. Ceres's step quality ρ: actual / predicted
+  // decrease (with non-monotonic steps, the larger of that and the decrease relative to the
+  // reference cost). 0 for invalid steps.
+  double relative_decrease = 0;
 };
 
 using CostByKind = std::array<double, kNumEdgeKinds>;

@@ -1,0 +1,210 @@
+// Where a solve's steps go (issue 20, docs/CONVERGENCE.md): solves a graph with the default
+// solver options (or those given) and records, per accepted step, the model fidelity ρ
+// (actual / predicted decrease), how far each kind of variable still is from the final values,
+// and, every `--cost-every` steps, the cost per edge kind. Then names the variables that move
+// last: those farthest from the final values once the cost is within 1e-6 of the final cost.
+//
+//   convergence_probe GRAPH [--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N]
+//                           [--minimizer lm|dogleg] [--cost-every N] [--top N]
+//
+// Prints CSV blocks to stdout: "steps" (one row per linear solve), "gap" (per accepted step and
+// role: RMS rotation [rad] and translation/position [m] distance to the final values), "cost"
+// (per sampled accepted step and edge kind), "late" (the top variables still moving).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "dynslam/graph_io.h"
+#include "dynslam/se3.h"
+#include "dynslam/solver.h"
+
+namespace dynslam {
+namespace {
+
+struct Snapshot {
+  StepRecord record;
+  std::vector<std::array<double, kPoseSize>> values;  // in the graph's vertex order
+  CostByKind cost{};
+  bool has_cost = false;
+};
+
+// Rotation (rad) and translation or position (m) distance of one vertex's value to another's.
+std::pair<double, double> Distance(VertexType type, const std::array<double, kPoseSize>& a,
+                                   const std::array<double, kPoseSize>& b) {
+  if (type == VertexType::kPoint) {
+    return {0.0, (Eigen::Vector3d(a[0], a[1], a[2]) - Eigen::Vector3d(b[0], b[1], b[2])).norm()};
+  }
+  const Pose e = Compose(Inverse(Pose{a}), Pose{b});
+  return {RotationAngle(e), e.translation().norm()};
+}
+
+struct Args {
+  std::string graph;
+  SolverOptions options;
+  int cost_every = 10;
+  int top = 15;
+};
+
+bool ParseArgs(int argc, char** argv, Args* args) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--max-iterations" && has_value) {
+      args->options.max_iterations = std::atoi(argv[++i]);
+    } else if (a == "--initial-lambda" && has_value) {
+      args->options.initial_lambda = std::atof(argv[++i]);
+    } else if (a == "--nonmonotonic-steps" && has_value) {
+      args->options.nonmonotonic_steps = std::atoi(argv[++i]);
+    } else if (a == "--minimizer" && has_value) {
+      if (!Parse(argv[++i], &args->options.minimizer)) return false;
+    } else if (a == "--cost-every" && has_value) {
+      args->cost_every = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--top" && has_value) {
+      args->top = std::atoi(argv[++i]);
+    } else if (args->graph.empty() && a.rfind("--", 0) != 0) {
+      args->graph = a;
+    } else {
+      return false;
+    }
+  }
+  return !args->graph.empty();
+}
+
+void PrintSteps(const std::vector<StepRecord>& rows) {
+  std::printf("# steps\nstep,accepted,lambda,cost,trial_cost,rho,time_s\n");
+  for (const StepRecord& r : rows) {
+    std::printf("%d,%d,%.3e,%.10f,%.10f,%.4f,%.3f\n", r.step, r.accepted ? 1 : 0, r.lambda,
+                r.cost, r.trial_cost, r.relative_decrease, r.time_s);
+  }
+}
+
+void PrintGaps(const Graph& graph, const std::vector<Snapshot>& snapshots) {
+  std::printf("# gap\nstep,role,rms_rotation_rad,rms_translation_m\n");
+  const std::vector<std::array<double, kPoseSize>>& last = snapshots.back().values;
+  for (const Snapshot& s : snapshots) {
+    std::map<Role, std::array<double, 3>> sums;  // rotation², translation², count
+    size_t i = 0;
+    for (const auto& [id, v] : graph.vertices) {
+      const auto [r, t] = Distance(v.type, s.values[i], last[i]);
+      auto& sum = sums[v.label.role];
+      sum[0] += r * r;
+      sum[1] += t * t;
+      sum[2] += 1;
+      ++i;
+    }
+    for (const auto& [role, sum] : sums) {
+      std::printf("%d,%s,%.3e,%.3e\n", s.record.step, RoleName(role), std::sqrt(sum[0] / sum[2]),
+                  std::sqrt(sum[1] / sum[2]));
+    }
+  }
+}
+
+void PrintCosts(const std::vector<Snapshot>& snapshots) {
+  std::printf("# cost\nstep");
+  for (const EdgeKind kind : kAllEdgeKinds) std::printf(",%s", EdgeKindName(kind));
+  std::printf("\n");
+  for (const Snapshot& s : snapshots) {
+    if (!s.has_cost) continue;
+    std::printf("%d", s.record.step);
+    for (const double c : s.cost) std::printf(",%.6f", c);
+    std::printf("\n");
+  }
+}
+
+// The variables farthest (in rotation, then translation) from their final values at the first
+// accepted step whose cost is within 1e-6 of the final cost.
+void PrintLate(const Graph& graph, const std::vector<Snapshot>& snapshots, int top) {
+  const double final_cost = snapshots.back().record.trial_cost;
+  const Snapshot* late = &snapshots.back();
+  for (const Snapshot& s : snapshots) {
+    if (s.record.trial_cost <= final_cost * (1 + 1e-6)) {
+      late = &s;
+      break;
+    }
+  }
+  struct Row {
+    double rotation, translation;
+    VertexId id;
+  };
+  std::vector<Row> rows;
+  size_t i = 0;
+  for (const auto& [id, v] : graph.vertices) {
+    const auto [r, t] = Distance(v.type, late->values[i], snapshots.back().values[i]);
+    rows.push_back({r, t, id});
+    ++i;
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    return std::tie(a.rotation, a.translation) > std::tie(b.rotation, b.translation);
+  });
+  std::printf("# late (step %d, cost %.10f, final %.10f)\nid,role,object,frame,rotation_rad,"
+              "translation_m\n", late->record.step, late->record.trial_cost, final_cost);
+  for (int k = 0; k < top && k < static_cast<int>(rows.size()); ++k) {
+    const Vertex& v = *graph.Find(rows[k].id);
+    std::printf("%lld,%s,%lld,%lld,%.3e,%.3e\n", static_cast<long long>(rows[k].id),
+                RoleName(v.label.role), static_cast<long long>(v.label.object),
+                static_cast<long long>(v.label.frame), rows[k].rotation, rows[k].translation);
+  }
+}
+
+int Run(const Args& args) {
+  Expected<Graph> graph = ReadGraph(args.graph);
+  if (!graph.ok()) {
+    std::fprintf(stderr, "%s\n", graph.error().ToString().c_str());
+    return 2;
+  }
+  std::vector<Snapshot> snapshots;
+  auto snapshot = [&](const StepRecord& record, const Graph& state) {
+    Snapshot s;
+    s.record = record;
+    for (const auto& [id, v] : state.vertices) s.values.push_back(v.value);
+    if (snapshots.size() % args.cost_every == 0) {
+      Expected<CostByKind> cost = EvaluateCost(state, args.options);
+      s.has_cost = cost.ok();
+      if (cost.ok()) s.cost = *cost;
+    }
+    snapshots.push_back(std::move(s));
+  };
+  SolverOptions options = args.options;
+  options.on_accepted_state = snapshot;
+  Graph solved = *graph;
+  Expected<SolveReport> report = Solve(options, &solved);
+  if (!report.ok()) {
+    std::fprintf(stderr, "%s\n", report.error().ToString().c_str());
+    return 1;
+  }
+  if (snapshots.empty()) {
+    std::fprintf(stderr, "no accepted step\n");
+    return 1;
+  }
+  if (!snapshots.back().has_cost) {
+    Expected<CostByKind> cost = EvaluateCost(solved, args.options);
+    snapshots.back().has_cost = cost.ok();
+    if (cost.ok()) snapshots.back().cost = *cost;
+  }
+  std::printf("# %s: final cost %.10f, %d steps, %d accepted, %s\n", args.graph.c_str(),
+              report->final_cost, report->steps, report->iterations, report->termination.c_str());
+  PrintSteps(report->convergence);
+  PrintGaps(*graph, snapshots);
+  PrintCosts(snapshots);
+  PrintLate(*graph, snapshots, args.top);
+  return 0;
+}
+
+}  // namespace
+}  // namespace dynslam
+
+int main(int argc, char** argv) {
+  dynslam::Args args;
+  if (!dynslam::ParseArgs(argc, argv, &args)) {
+    std::fprintf(stderr,
+                 "usage: convergence_probe GRAPH [--max-iterations N] [--initial-lambda X] "
+                 "[--nonmonotonic-steps N] [--minimizer lm|dogleg] [--cost-every N] [--top N]\n");
+    return 2;
+  }
+  return dynslam::Run(args);
+}
