@@ -91,6 +91,14 @@ SolverFlags::SolverFlags(ArgParser* parser)
   parser->AddFlag("eliminate-object-points", &eliminate_object_points_,
                   "Schur solvers: eliminate object-frame points first too (slower on the "
                   "reference scenes; static points are always eliminated first)");
+  parser->AddChoice("object-point-variables", &object_point_variables_, {"world", "object"},
+                    "what the solver varies for an object-frame point: its world position at "
+                    "an anchor pose (the same cost and optimum, far fewer steps), or its "
+                    "object-frame coordinates (docs/CONVERGENCE.md)");
+  parser->AddChoice("kinematic-residual-frame", &kinematic_residual_frame_, {"world", "object"},
+                    "frame of the object kinematic edge's whitened residual: turned into the "
+                    "world by the object's rotation (the same cost and optimum, fewer steps), or "
+                    "as SPEC §1.3 writes it (docs/CONVERGENCE.md)");
   parser->AddFlag("fix-first", &fix_first_,
                   "hold the smallest-id pose constant (needed when the graph has no prior)");
   parser->AddString("robust", &robust_,
@@ -114,6 +122,8 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   options->nonmonotonic_steps = static_cast<int>(nonmonotonic_steps_);
   options->fix_first = fix_first_;
   options->eliminate_object_points = eliminate_object_points_;
+  options->world_anchored_object_points = object_point_variables_ == "world";
+  options->world_frame_kinematic_residual = kinematic_residual_frame_ == "world";
   return ParseRobust(robust_, options);
 }
 

@@ -32,6 +32,9 @@ class SolverFlags {
   int64_t nonmonotonic_steps_;
   bool fix_first_;
   bool eliminate_object_points_;
+  std::string object_point_variables_ = defaults_.world_anchored_object_points ? "world" : "object";
+  std::string kinematic_residual_frame_ =
+      defaults_.world_frame_kinematic_residual ? "world" : "object";
   std::string robust_;
 };
 

@@ -31,15 +31,23 @@ class ObjectKinematicError {
     SE3Log(error_pose, error.data());
     Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
     r = sqrt_information_.cast<T>() * error;
+    if (rotate_) {
+      const Eigen::Matrix<T, 3, 3> rotation = se3_internal::Rotation(L_w_curr).toRotationMatrix();
+      r.template head<3>() = (rotation * r.template head<3>()).eval();
+      r.template tail<3>() = (rotation * r.template tail<3>()).eval();
+    }
     return true;
   }
 
-  static ceres::CostFunction* Create(const Matrix6d& information) {
+  static ceres::CostFunction* Create(const Matrix6d& information, bool rotate = false) {
+    auto* f = new ObjectKinematicError(information);
+    f->rotate_ = rotate;
     return new ceres::AutoDiffCostFunction<ObjectKinematicError, 6, kPoseSize, kPoseSize,
-                                           kPoseSize>(new ObjectKinematicError(information));
+                                           kPoseSize>(f);
   }
 
  private:
+  bool rotate_ = false;
   Matrix6d sqrt_information_;
 };
 

@@ -124,6 +124,8 @@ Json SolverJson(const SolverOptions& options) {
       .Set("nonmonotonic_steps", options.nonmonotonic_steps)
       .Set("fix_first", options.fix_first)
       .Set("eliminate_object_points", options.eliminate_object_points)
+      .Set("object_point_variables", options.world_anchored_object_points ? "world" : "object")
+      .Set("kinematic_residual_frame", options.world_frame_kinematic_residual ? "world" : "object")
       .Set("robust_kernels", std::move(kernels));
 }
 

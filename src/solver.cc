@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -21,6 +22,7 @@
 #include "cost_functions/point_motion_error_dsc.h"
 #include "cost_functions/pose_between_error.h"
 #include "cost_functions/pose_prior_error.h"
+#include "cost_functions/world_anchored_object_point.h"
 #include "dynslam/se3_manifold.h"
 #include "src/openmp_thread_cap.h"
 
@@ -117,6 +119,13 @@ class Assembly {
   Status Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::CostFunction* cost,
              std::initializer_list<VertexId> ids);
 
+  // SolverOptions::world_anchored_object_points: each object-frame point's anchor pose, chosen
+  // before any residual is added; its block then holds w = L_a · m_L (WriteBack undoes it).
+  void AnchorObjectPoints(const Graph& graph);
+  Status AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e);
+  Status AddObjectMotionEdge(const Graph& graph, const ObjectMotionEdge& e, bool dsc);
+
+  std::unordered_map<VertexId, VertexId> anchor_;  // object-frame point → its anchor pose
   std::unordered_map<VertexId, size_t> index_;
   std::vector<VertexId> ids_;
   std::vector<VertexType> types_;
@@ -199,19 +208,15 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
     a->joined_points_.insert(e.prev);
     a->joined_points_.insert(e.curr);
   }
+  if (options.world_anchored_object_points) a->AnchorObjectPoints(graph);
   for (const ObjectPointEdge& e : graph.object_point_edges) {
-    add(EdgeKind::kObjectPoint, e.line,
-        ObjectPointMeasurementError::Create(e.measurement, e.information),
-        {e.camera, e.object_pose, e.point});
+    if (status.ok()) status = a->AddObjectPointEdge(graph, e);
   }
   for (const ObjectMotionEdge& e : graph.object_motion_edges) {
-    add(EdgeKind::kObjectMotion, e.line,
-        options.dsc_object_motion_residual ? ObjectPointMotionErrorDsc::Create(e.information)
-                                           : ObjectPointMotionError::Create(e.information),
-        {e.pose_prev, e.pose_curr, e.motion, e.point});
+    if (status.ok()) status = a->AddObjectMotionEdge(graph, e, options.dsc_object_motion_residual);
   }
   for (const KinematicEdge& e : graph.kinematic_edges) {
-    add(EdgeKind::kKinematic, e.line, ObjectKinematicError::Create(e.information),
+    add(EdgeKind::kKinematic, e.line, ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual),
         {e.pose_prev, e.pose_curr, e.motion});
   }
   if (!status.ok()) return status.error();
@@ -265,9 +270,79 @@ Status Assembly::CheckFinite(EdgeKind kind) {
   return Status::Ok();
 }
 
+void Assembly::AnchorObjectPoints(const Graph& graph) {
+  auto consider = [&](VertexId point, VertexId pose) {
+    auto [it, inserted] = anchor_.emplace(point, pose);
+    if (!inserted) it->second = std::min(it->second, pose);
+  };
+  for (const ObjectPointEdge& e : graph.object_point_edges) consider(e.point, e.object_pose);
+  for (const ObjectMotionEdge& e : graph.object_motion_edges) {
+    consider(e.point, e.pose_prev);
+    consider(e.point, e.pose_curr);
+  }
+  for (auto it = anchor_.begin(); it != anchor_.end();) {
+    const Vertex* point = graph.Find(it->first);
+    const Vertex* pose = graph.Find(it->second);
+    if (point == nullptr || pose == nullptr || point->type != VertexType::kPoint ||
+        pose->type != VertexType::kPose) {
+      it = anchor_.erase(it);  // a malformed edge: Add reports it
+      continue;
+    }
+    const Eigen::Vector3d w = Transform(pose->pose(), point->point());
+    std::copy(w.data(), w.data() + 3, Block(it->first));
+    ++it;
+  }
+}
+
+Status Assembly::AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e) {
+  const ObjectPointMeasurementError residual(e.measurement, e.information);
+  auto anchor = anchor_.find(e.point);
+  if (anchor == anchor_.end()) {
+    return Add(graph, EdgeKind::kObjectPoint, e.line,
+               ObjectPointMeasurementError::Create(e.measurement, e.information),
+               {e.camera, e.object_pose, e.point});
+  }
+  if (anchor->second == e.object_pose) {  // X⁻¹ · L_a · L_a⁻¹ · w = X⁻¹ · w
+    return Add(graph, EdgeKind::kObjectPoint, e.line,
+               PointMeasurementError::Create(e.measurement, e.information), {e.camera, e.point});
+  }
+  return Add(graph, EdgeKind::kObjectPoint, e.line,
+             WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(residual),
+             {e.camera, e.object_pose, anchor->second, e.point});
+}
+
+Status Assembly::AddObjectMotionEdge(const Graph& graph, const ObjectMotionEdge& e, bool dsc) {
+  auto add = [&](auto residual) {
+    using Anchored = WorldAnchored<decltype(residual), 3, 3>;
+    auto anchor = anchor_.find(e.point);
+    std::initializer_list<VertexId> own = {e.pose_prev, e.pose_curr, e.motion, e.point};
+    if (anchor == anchor_.end()) {
+      return Add(graph, EdgeKind::kObjectMotion, e.line, decltype(residual)::Create(e.information),
+                 own);
+    }
+    if (anchor->second == e.pose_prev) {
+      return Add(graph, EdgeKind::kObjectMotion, e.line,
+                 Anchored::template AtOwnPose<0>(residual), own);
+    }
+    if (anchor->second == e.pose_curr) {
+      return Add(graph, EdgeKind::kObjectMotion, e.line,
+                 Anchored::template AtOwnPose<1>(residual), own);
+    }
+    return Add(graph, EdgeKind::kObjectMotion, e.line, Anchored::AtFurtherPose(residual),
+               {e.pose_prev, e.pose_curr, e.motion, anchor->second, e.point});
+  };
+  return dsc ? add(ObjectPointMotionErrorDsc(e.information))
+             : add(ObjectPointMotionError(e.information));
+}
+
 void Assembly::WriteBack(Graph* graph) const {
   for (size_t i = 0; i < ids_.size(); ++i) {
     graph->vertices.at(ids_[i]).value = values_[i];
+  }
+  for (const auto& [point, pose] : anchor_) {  // m_L = L_a⁻¹ · w
+    const Eigen::Vector3d m = Transform(Inverse(graph->Find(pose)->pose()),
+                                        graph->Find(point)->point());
+    graph->Find(point)->point() = m;
   }
 }
 

@@ -18,6 +18,7 @@
 #include "cost_functions/point_motion_error_dsc.h"
 #include "cost_functions/pose_between_error.h"
 #include "cost_functions/pose_prior_error.h"
+#include "cost_functions/world_anchored_object_point.h"
 #include "dynslam/se3.h"
 #include "dynslam/se3_manifold.h"
 
@@ -251,6 +252,90 @@ TEST(ObjectKinematicErrorTest, ZeroHandValueAndJacobian) {
     EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x)}), 1e-7);
     EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(Compose(h, x)), PoseBlock(h)}), 1e-7);
   }
+}
+
+// The world-frame kinematic residual (SolverOptions::world_frame_kinematic_residual): the object
+// frame's residual turned by L_curr's rotation, so the same norm (the same cost) for any
+// information; with the SPEC's isotropic information, unchanged when a rotation G turns every
+// object pose (L → L·G: the segment's gauge), where the object-frame residual turns with G.
+TEST(ObjectKinematicErrorTest, WorldFrameHasTheSameNormAndIgnoresTheGaugeRotation) {
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose l_curr = Compose(Exp((Vector6d() << 0.05, -0.02, 0.1, 0.3, 0.1, 1).finished()),
+                              Compose(kOffset, l_prev));
+  std::unique_ptr<ceres::CostFunction> object(ObjectKinematicError::Create(Information6()));
+  std::unique_ptr<ceres::CostFunction> world(ObjectKinematicError::Create(Information6(), true));
+  const std::vector<Block> blocks = {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset)};
+  EXPECT_GT(Residual(*object, blocks).norm(), 1.0);
+  EXPECT_NEAR(Residual(*world, blocks).norm(), Residual(*object, blocks).norm(), 1e-12);
+  EXPECT_GT((Residual(*world, blocks) - Residual(*object, blocks)).norm(), 1e-2);
+
+  const Matrix6d isotropic = 10000 * Matrix6d::Identity();
+  std::unique_ptr<ceres::CostFunction> object_iso(ObjectKinematicError::Create(isotropic));
+  std::unique_ptr<ceres::CostFunction> world_iso(ObjectKinematicError::Create(isotropic, true));
+  const Pose gauge = Pose::FromRotationTranslation(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
+      Eigen::Vector3d::Zero());
+  const std::vector<Block> turned = {PoseBlock(Compose(l_prev, gauge)),
+                                     PoseBlock(Compose(l_curr, gauge)), PoseBlock(kOffset)};
+  EXPECT_LT((Residual(*world_iso, turned) - Residual(*world_iso, blocks)).norm(), 1e-9);
+  EXPECT_GT((Residual(*object_iso, turned) - Residual(*object_iso, blocks)).norm(), 1.0);
+  for (const Pose& x : CheckPoses()) {
+    EXPECT_LT(JacobianError(*world, {PoseBlock(l_prev), PoseBlock(x), PoseBlock(kOffset)}), 1e-7);
+    EXPECT_LT(JacobianError(*world, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(kOffset)}), 1e-7);
+  }
+}
+
+// The change of variables m_L = L_a⁻¹ · w: each anchored cost function equals the residual of
+// SPEC §1.3 at that m_L, whichever pose is the anchor, and its Jacobian matches differences.
+TEST(WorldAnchoredObjectPointTest, EqualsTheResidualAtTheObjectFramePoint) {
+  const Pose x = Exp((Vector6d() << 0.1, -0.2, 0.05, 1, 2, -3).finished());
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose l_curr = Compose(Exp((Vector6d() << 0.01, 0.02, 0, 0.1, 0, 0).finished()),
+                              Compose(kOffset, l_prev));
+  const Pose l_a = Exp((Vector6d() << -0.3, 0.2, 0.1, 2, 0, 9).finished());
+  const Block w{4, -1, 12};
+  auto m_from = [&](const Pose& anchor) {
+    const Eigen::Vector3d m = Transform(Inverse(anchor), Eigen::Vector3d(w[0], w[1], w[2]));
+    return Block{m.x(), m.y(), m.z()};
+  };
+  const ObjectPointMeasurementError measurement(Eigen::Vector3d(0.5, -0.3, 8), Information3());
+  std::unique_ptr<ceres::CostFunction> plain(
+      ObjectPointMeasurementError::Create(Eigen::Vector3d(0.5, -0.3, 8), Information3()));
+  std::unique_ptr<ceres::CostFunction> anchored(
+      WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(measurement));
+  const std::vector<Block> anchored_blocks = {PoseBlock(x), PoseBlock(l_curr), PoseBlock(l_a), w};
+  EXPECT_LT((Residual(*anchored, anchored_blocks) -
+             Residual(*plain, {PoseBlock(x), PoseBlock(l_curr), m_from(l_a)}))
+                .norm(),
+            1e-10);
+  EXPECT_LT(JacobianError(*anchored, anchored_blocks), 1e-7);
+
+  const ObjectPointMotionError motion(Information3());
+  std::unique_ptr<ceres::CostFunction> motion_plain(ObjectPointMotionError::Create(Information3()));
+  using Motion = WorldAnchored<ObjectPointMotionError, 3, 3>;
+  const std::vector<std::pair<std::unique_ptr<ceres::CostFunction>, Pose>> cases = [&] {
+    std::vector<std::pair<std::unique_ptr<ceres::CostFunction>, Pose>> c;
+    c.emplace_back(Motion::AtOwnPose<0>(motion), l_prev);
+    c.emplace_back(Motion::AtOwnPose<1>(motion), l_curr);
+    return c;
+  }();
+  const std::vector<Block> own = {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), w};
+  for (const auto& [cost, anchor] : cases) {
+    EXPECT_LT((Residual(*cost, own) - Residual(*motion_plain, {PoseBlock(l_prev), PoseBlock(l_curr),
+                                                               PoseBlock(kOffset), m_from(anchor)}))
+                  .norm(),
+              1e-10);
+    EXPECT_LT(JacobianError(*cost, own), 1e-7);
+  }
+  std::unique_ptr<ceres::CostFunction> further(Motion::AtFurtherPose(motion));
+  const std::vector<Block> further_blocks = {PoseBlock(l_prev), PoseBlock(l_curr),
+                                             PoseBlock(kOffset), PoseBlock(l_a), w};
+  EXPECT_LT((Residual(*further, further_blocks) -
+             Residual(*motion_plain,
+                      {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), m_from(l_a)}))
+                .norm(),
+            1e-10);
+  EXPECT_LT(JacobianError(*further, further_blocks), 1e-7);
 }
 
 // SPEC §7 item 2: (m_prev − H⁻¹·m_curr)/σ. H = translation (1,0,0), m_prev = 0,

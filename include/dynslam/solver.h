@@ -77,6 +77,16 @@ struct SolverOptions {
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
   // system dense per segment (3× slower linear solves on kitti_0003 oc_b, docs/SOLVER.md).
   bool eliminate_object_points = false;
+  // Object-centric graphs: the solver carries each object-frame point m_L as its world position
+  // w = L_a · m_L at an anchor pose L_a (the smallest-id object pose of its edges) and writes
+  // m_L back. The same cost and optimum in a chart where a segment's gauge is a straight line:
+  // 2–10× fewer steps (docs/CONVERGENCE.md). Off: the solver's variables are m_L themselves.
+  bool world_anchored_object_points = true;
+  // EDGE_SE3_OBJ_KINEMATIC's whitened residual turned into the world frame by L_curr's rotation:
+  // the same norm, so the same cost and optimum, but a residual that a segment's gauge rotation
+  // leaves unchanged, where the object-frame one turns with it and Gauss–Newton mistakes that
+  // for curvature (docs/CONVERGENCE.md).
+  bool world_frame_kinematic_residual = true;
   // SPEC §1.7: a graph with no prior is refused unless the smallest-id pose is held constant.
   bool fix_first = false;
   // SPEC §7, the released code's residuals (never defaults): item 2, EDGE_SE3_MOTION as
