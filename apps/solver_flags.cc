@@ -86,7 +86,8 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     0, 1e16);
   parser->AddInt("nonmonotonic-steps", &nonmonotonic_steps_,
                  "accept up to N consecutive steps that raise the cost (Ceres's non-monotonic "
-                 "steps); -1: 5 when the graph has kinematic edges (oc_b, oc_c), else 0",
+                 "steps); -1: 5 when the graph has kinematic edges (oc_b, oc_c) and "
+                 "--kinematic-residual-frame object, else 0",
                  -1, 1000);
   parser->AddFlag("eliminate-object-points", &eliminate_object_points_,
                   "Schur solvers: eliminate object-frame points first too (slower on the "

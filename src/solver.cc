@@ -526,8 +526,11 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
                                   : SparseBackend::kEigen;
   }
   if (resolved.initial_lambda == 0) resolved.initial_lambda = has_points ? 1e-6 : 1e-10;
+  // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
+  // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
   if (resolved.nonmonotonic_steps == -1) {
-    resolved.nonmonotonic_steps = graph.kinematic_edges.empty() ? 0 : 5;
+    resolved.nonmonotonic_steps =
+        graph.kinematic_edges.empty() || resolved.world_frame_kinematic_residual ? 0 : 5;
   }
   return resolved;
 }

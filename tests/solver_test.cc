@@ -146,10 +146,16 @@ constexpr char kObjectCentric[] =
     "EDGE_SE3_OBJ_MOTION 2 3 4 5 1 0 0 1 0 1\n"
     "EDGE_SE3_OBJ_KINEMATIC 2 3 4 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n";
 
-TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithKinematicEdges) {
+TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithTheObjectFrameKinematicResidual) {
   Graph object_centric = Read(kObjectCentric);
   ASSERT_FALSE(object_centric.kinematic_edges.empty());
   Expected<SolveReport> report = Solve(SolverOptions{}, &object_centric);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
+  SolverOptions object_frame;
+  object_frame.world_frame_kinematic_residual = false;
+  object_centric = Read(kObjectCentric);
+  report = Solve(object_frame, &object_centric);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.nonmonotonic_steps, 5);
 
@@ -188,7 +194,7 @@ TEST(SolverTest, NamesRoundTrip) {
 
 TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
   // Every graph: sparse normal Cholesky on CHOLMOD (this Ceres has SuiteSparse).
-  // Points and kinematic edges: LM, first damping 1e-6, non-monotonic steps.
+  // Points and kinematic edges: LM, first damping 1e-6, monotonic (world-frame kinematic residual).
   Graph kinematic = Read(kObjectCentric);
   Expected<SolveReport> report = Solve(SolverOptions{}, &kinematic);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
@@ -196,7 +202,7 @@ TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
   EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
   EXPECT_EQ(report->options_used.sparse_backend, SparseBackend::kSuiteSparse);
   EXPECT_EQ(report->options_used.initial_lambda, 1e-6);
-  EXPECT_EQ(report->options_used.nonmonotonic_steps, 5);
+  EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
 
   // Points, no kinematic edge: dogleg.
   Graph with_points = Read(kObjectCentric);

@@ -70,8 +70,8 @@ struct SolverOptions {
   double initial_lambda = 0;
   // Ceres's non-monotonic steps: accept a step that raises the cost when the cost is still below
   // the best of the last N accepted steps. −1 (auto): N = 5 when the graph has kinematic edges
-  // (oc_b, oc_c), where it takes 3–5× fewer steps to the optimum on KITTI scenes, else 0 (off:
-  // on synthetic oc_a it never settles within 500 steps). docs/SOLVER.md has the measurements.
+  // and world_frame_kinematic_residual is off (there it took 3–5× fewer steps), else 0: with the
+  // world-frame residual the monotonic solver has the shorter tail (docs/CONVERGENCE.md).
   int nonmonotonic_steps = -1;
   // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
