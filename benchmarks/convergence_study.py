@@ -85,6 +85,11 @@ def solve_one(args, seq_dir, seq, formulation, init, variant):
 
 def study(args):
     os.makedirs(args.out, exist_ok=True)
+    commit = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty"],
+                            capture_output=True, text=True).stdout.strip()
+    with open(os.path.join(args.out, "meta.json"), "w") as f:
+        json.dump({"command": " ".join(sys.argv), "commit": commit,
+                   "date": time.strftime("%Y-%m-%d")}, f, indent=1)
     results = []
     for seq in args.sequences:
         seq_dir = os.path.join(args.out, f"kitti_{seq}")
@@ -107,11 +112,6 @@ def study(args):
                                                                  optimum * (1 + 1e-6))
                 results.append(r)
             write_csv(os.path.join(args.out, "runs.csv"), results)
-    with open(os.path.join(args.out, "meta.json"), "w") as f:
-        commit = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty"],
-                                capture_output=True, text=True).stdout.strip()
-        json.dump({"command": " ".join(sys.argv), "commit": commit,
-                   "date": time.strftime("%Y-%m-%d")}, f, indent=1)
 
 
 def write_csv(path, results):

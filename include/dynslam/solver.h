@@ -157,7 +157,8 @@ Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& optio
 
 // The Jacobian of the whitened residuals (SPEC §1.5) at the graph's values, taken in the
 // tangent space of each variable (6 columns for a pose, [ω; ρ] as SE3Manifold; 3 for a point),
-// as the solver sees it. Columns are grouped by variable in ascending vertex id; vertices in no
+// as the solver sees it (with world_anchored_object_points, an object-frame point's columns are
+// those of w = L_a · m_L). Columns are grouped by variable in ascending vertex id; vertices in no
 // edge have no columns. For analysis and benchmarks (the factorisation floor of
 // docs/BENCHMARKS.md).
 struct SystemJacobian {
