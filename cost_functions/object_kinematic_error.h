@@ -2,6 +2,9 @@
 // object_kinematic_factor)
 // L_prev = L_w_prev, L_curr = L_w_curr: object poses at frames k−1 and k; H = H_w: the object's
 // motion H^W_{k−1,k}. Zero when H = L_curr · L_prev⁻¹. S: information in [ω; ρ] order.
+// `world_frame`: both 3-vectors of r turned by L_curr's rotation — the same norm, so the same
+// cost, but unchanged when every object pose of a segment turns by the same rotation (its gauge,
+// docs/CONVERGENCE.md); the solver's default (SolverOptions::world_frame_kinematic_residual).
 #ifndef DYNSLAM_COST_FUNCTIONS_OBJECT_KINEMATIC_ERROR_H_
 #define DYNSLAM_COST_FUNCTIONS_OBJECT_KINEMATIC_ERROR_H_
 
@@ -15,8 +18,8 @@ namespace dynslam {
 
 class ObjectKinematicError {
  public:
-  explicit ObjectKinematicError(const Matrix6d& information)
-      : sqrt_information_(SqrtInformation(information)) {}
+  ObjectKinematicError(const Matrix6d& information, bool world_frame)
+      : sqrt_information_(SqrtInformation(information)), world_frame_(world_frame) {}
 
   template <typename T>
   bool operator()(const T* const L_w_prev, const T* const L_w_curr, const T* const H_w,
@@ -31,7 +34,7 @@ class ObjectKinematicError {
     SE3Log(error_pose, error.data());
     Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
     r = sqrt_information_.cast<T>() * error;
-    if (rotate_) {
+    if (world_frame_) {
       const Eigen::Matrix<T, 3, 3> rotation = se3_internal::Rotation(L_w_curr).toRotationMatrix();
       r.template head<3>() = (rotation * r.template head<3>()).eval();
       r.template tail<3>() = (rotation * r.template tail<3>()).eval();
@@ -39,16 +42,15 @@ class ObjectKinematicError {
     return true;
   }
 
-  static ceres::CostFunction* Create(const Matrix6d& information, bool rotate = false) {
-    auto* f = new ObjectKinematicError(information);
-    f->rotate_ = rotate;
+  static ceres::CostFunction* Create(const Matrix6d& information, bool world_frame = false) {
     return new ceres::AutoDiffCostFunction<ObjectKinematicError, 6, kPoseSize, kPoseSize,
-                                           kPoseSize>(f);
+                                           kPoseSize>(
+        new ObjectKinematicError(information, world_frame));
   }
 
  private:
-  bool rotate_ = false;
   Matrix6d sqrt_information_;
+  bool world_frame_;
 };
 
 }  // namespace dynslam

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -216,7 +215,8 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
     if (status.ok()) status = a->AddObjectMotionEdge(graph, e, options.dsc_object_motion_residual);
   }
   for (const KinematicEdge& e : graph.kinematic_edges) {
-    add(EdgeKind::kKinematic, e.line, ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual),
+    add(EdgeKind::kKinematic, e.line,
+        ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual),
         {e.pose_prev, e.pose_curr, e.motion});
   }
   if (!status.ok()) return status.error();
@@ -295,7 +295,6 @@ void Assembly::AnchorObjectPoints(const Graph& graph) {
 }
 
 Status Assembly::AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e) {
-  const ObjectPointMeasurementError residual(e.measurement, e.information);
   auto anchor = anchor_.find(e.point);
   if (anchor == anchor_.end()) {
     return Add(graph, EdgeKind::kObjectPoint, e.line,
@@ -307,7 +306,8 @@ Status Assembly::AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e
                PointMeasurementError::Create(e.measurement, e.information), {e.camera, e.point});
   }
   return Add(graph, EdgeKind::kObjectPoint, e.line,
-             WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(residual),
+             WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(
+                 ObjectPointMeasurementError(e.measurement, e.information)),
              {e.camera, e.object_pose, anchor->second, e.point});
 }
 
