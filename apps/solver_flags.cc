@@ -63,7 +63,7 @@ SolverFlags::SolverFlags(ArgParser* parser)
       eliminate_object_points_(defaults_.eliminate_object_points) {
   parser->AddChoice("minimizer", &minimizer_, {"auto", "lm", "dogleg"},
                     "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: dogleg "
-                    "for graphs with points and no kinematic edge, else lm");
+                    "for world-centric graphs with points (wc), else lm");
   parser->AddChoice("linear-solver", &linear_solver_,
                     {"auto", "sparse_schur", "sparse_normal_cholesky", "iterative_schur",
                      "dense_schur"},

@@ -204,14 +204,24 @@ TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
   EXPECT_EQ(report->options_used.initial_lambda, 1e-6);
   EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
 
-  // Points, no kinematic edge: dogleg.
-  Graph with_points = Read(kObjectCentric);
-  with_points.kinematic_edges.clear();
-  report = Solve(SolverOptions{}, &with_points);
+  // Object-centric without kinematic edges (oc_a): LM, monotonic.
+  Graph oc_a = Read(kObjectCentric);
+  oc_a.kinematic_edges.clear();
+  report = Solve(SolverOptions{}, &oc_a);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
-  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
   EXPECT_EQ(report->options_used.linear_solver, LinearSolverType::kSparseNormalCholesky);
   EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
+
+  // World-centric, points and no object-centric edge: dogleg.
+  Graph world_centric = Read(std::string(kTwoPoses) +
+                             "VERTEX_TRACKXYZ 5 0 1 4\n"
+                             "EDGE_SE3_TRACKXYZ 0 5 0 1 4 1 0 0 1 0 1 0\n"
+                             "EDGE_SE3_TRACKXYZ 1 5 1 -1 4 1 0 0 1 0 1 0\n");
+  report = Solve(SolverOptions{}, &world_centric);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kDogleg);
+  EXPECT_EQ(report->options_used.initial_lambda, 1e-6);
 
   // Pose graph: LM starting nearly at Gauss–Newton.
   Graph pose_graph = Read(kTwoPoses);
