@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -40,6 +41,17 @@ std::array<EdgeSet, kNumEdgeKinds> EdgesByKind(const Graph& g) {
   }
   for (const auto& e : g.kinematic_edges) add(EdgeKind::kKinematic, {e.pose_prev, e.pose_curr, e.motion});
   return edges;
+}
+
+// The reference set's synthetic scene (front end, ground truth); nothing when it is absent.
+std::optional<std::pair<Graph, GroundTruth>> ReadSyntheticScene() {
+  const fs::path scene = fs::path(testing::ReferenceDir()) / "synthetic";
+  if (!fs::exists(scene / "frontend.g2o") || !fs::exists(scene / "gt.txt")) return std::nullopt;
+  Expected<Graph> front_end = ReadGraph((scene / "frontend.g2o").string());
+  Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
+  EXPECT_TRUE(front_end.ok() && gt.ok());
+  if (!front_end.ok() || !gt.ok()) return std::nullopt;
+  return std::make_pair(std::move(*front_end), std::move(*gt));
 }
 
 // Every edge's measurement and information, by kind and vertex tuple: a pose measurement as its
@@ -472,13 +484,10 @@ TEST(FormulationEdgeCaseTest, LabelledMotionInNoMotionEdgeIsDroppedAndReported) 
 // 0..14 and 15..29, no motion at 15), object 3 is seen at frames 5..8 only (4 < 5 frames:
 // dropped), 17 dynamic points are in no motion edge. Counts, not report lines, checked here.
 TEST(FormulationEdgeCaseTest, SyntheticSceneSegmentsWithExactCounts) {
-  const fs::path scene = fs::path(testing::ReferenceDir()) / "synthetic";
-  if (!fs::exists(scene / "frontend.g2o") || !fs::exists(scene / "gt.txt")) {
-    GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
-  }
-  Expected<Graph> front_end = ReadGraph((scene / "frontend.g2o").string());
-  Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
-  ASSERT_TRUE(front_end.ok() && gt.ok());
+  std::optional<std::pair<Graph, GroundTruth>> synthetic = ReadSyntheticScene();
+  if (!synthetic) GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
+  const Graph* front_end = &synthetic->first;
+  const GroundTruth* gt = &synthetic->second;
 
   Expected<Graph> wc = BuildFormulation(*front_end, Formulation::kWorldCentric, BuildOptions{}, &*gt, nullptr);
   ASSERT_TRUE(wc.ok()) << wc.error().ToString();
@@ -538,15 +547,10 @@ namespace {
 class ObjectInitTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const fs::path scene = fs::path(testing::ReferenceDir()) / "synthetic";
-    if (!fs::exists(scene / "frontend.g2o") || !fs::exists(scene / "gt.txt")) {
-      GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
-    }
-    Expected<Graph> front_end = ReadGraph((scene / "frontend.g2o").string());
-    Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
-    ASSERT_TRUE(front_end.ok() && gt.ok());
-    front_end_ = std::move(*front_end);
-    gt_ = std::move(*gt);
+    std::optional<std::pair<Graph, GroundTruth>> synthetic = ReadSyntheticScene();
+    if (!synthetic) GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
+    front_end_ = std::move(synthetic->first);
+    gt_ = std::move(synthetic->second);
   }
   Graph Build(ObjectInit rule) {
     BuildOptions options;
