@@ -10,7 +10,8 @@ and points, the variants only in the solver's chart or residual frame).
 
   benchmarks/convergence_study.py --out DIR [--sequences 0000,0003] [--formulations wc,oc_b]
       [--variants default,…] [--frames A:B] [--dynslam PATH] [--timeout S]
-  benchmarks/convergence_study.py --report DIR      the markdown tables of DIR/runs.csv
+  benchmarks/convergence_study.py --report DIR      the markdown tables of DIR/runs.csv (every
+      run; then default start against `truth` start per sequence and formulation)
 
 Variants (solver flags): default; object_points (`--object-point-variables object`);
 object_kinematic (`--kinematic-residual-frame object`); before (both: the solver before issue 20).
@@ -140,6 +141,26 @@ def report(directory):
               f"| {fmt(r['motion_rot_deg'], '.3f')}, {fmt(r['motion_trans_m'], '.3f')} |")
 
 
+def check(directory):
+    """Issue 20's criteria per (sequence, formulation): the default start's final cost against the
+    `truth` start's, and its object motion error against that solve's."""
+    with open(os.path.join(directory, "runs.csv")) as f:
+        runs = [r for r in csv.DictReader(f) if r["variant"] == "default"]
+    by_key = {(r["sequence"], r["formulation"], r["init"]): r for r in runs}
+    print("| seq | formulation | default final / truth final − 1 | motion error default vs truth "
+          "(rot, trans) | steps to 1e-6 (default start) |")
+    print("|---|---|---:|---|---:|")
+    for (seq, formulation, init), r in by_key.items():
+        truth = by_key.get((seq, formulation, "truth"))
+        if init != "motion" or truth is None:
+            continue
+        gap = float(r["final_cost"]) / float(truth["final_cost"]) - 1
+        rot = float(r["motion_rot_deg"]) / float(truth["motion_rot_deg"]) - 1
+        trans = float(r["motion_trans_m"]) / float(truth["motion_trans_m"]) - 1
+        print(f"| {seq} | {formulation} | {gap:+.1e} | {rot:+.1%}, {trans:+.1%} "
+              f"| {r['steps_to_1e6'] or '–'} |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out")
@@ -154,6 +175,8 @@ def main():
     args = parser.parse_args()
     if args.report:
         report(args.report)
+        print()
+        check(args.report)
         return
     if not args.out:
         parser.error("--out DIR or --report DIR")
