@@ -79,8 +79,8 @@ struct SolverOptions {
   bool eliminate_object_points = false;
   // Object-centric graphs: the solver carries each object-frame point m_L as its world position
   // w = L_a · m_L at an anchor pose L_a (the smallest-id object pose of its edges) and writes
-  // m_L back. The same cost and optimum in a chart where a segment's gauge is a straight line:
-  // 2–10× fewer steps (docs/CONVERGENCE.md). Off: the solver's variables are m_L themselves.
+  // m_L back. The same cost and optimum in a chart where a segment's gauge is a straight line
+  // (docs/CONVERGENCE.md has the measurements). Off: the solver's variables are m_L themselves.
   bool world_anchored_object_points = true;
   // EDGE_SE3_OBJ_KINEMATIC's whitened residual turned into the world frame by L_curr's rotation:
   // the same norm, so the same cost and optimum, but a residual that a segment's gauge rotation
