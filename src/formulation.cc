@@ -403,7 +403,9 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
     ++initialised_from_gt_;
     return true;
   };
-  auto chained = [&](int64_t k) { return Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1)); };
+  auto chained = [&](int64_t k) {
+    return Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
+  };
   auto aligned = [&](int64_t k) {
     std::vector<Eigen::Vector3d> from, to;
     for (const auto& [t, p] : observed[k]) {
@@ -415,15 +417,14 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
     Pose pose;
     return Align(from, to, &pose) ? pose : chained(k);
   };
+  const ObjectInit rule = options_.object_init;
   for (int64_t k = segment.first; k <= segment.last; ++k) {
     Pose pose;
-    const ObjectInit rule = options_.object_init;
+    const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
     if (rule == ObjectInit::kCentroid) {
       pose = centroid(k);
-    } else if (k == segment.first && options_.dsc_object_centric_noise &&
-               gt_ != nullptr && gt_->Object(j, k) != nullptr) {
-      pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(),
-                                           gt_->Object(j, k)->translation());
+    } else if (k == segment.first && options_.dsc_object_centric_noise && l_gt != nullptr) {
+      pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), l_gt->translation());
       ++initialised_from_gt_;
     } else if (k == segment.first) {
       if (!from_truth(k, &pose)) pose = centroid(k);
