@@ -1,6 +1,7 @@
 #include "dynslam/solver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -424,15 +425,18 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
 // (so the damping a step used is the radius reported before it).
 class ConvergenceRecorder : public ceres::IterationCallback {
  public:
-  // `assembly` and `scratch` are used only when options.on_accepted_state is set.
-  ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch)
-      : options_(options), assembly_(assembly), scratch_(scratch) {}
+  using Clock = std::chrono::steady_clock;
+  // `assembly` and `scratch` are used only when options.on_accepted_state is set; `start` is
+  // where options.max_time_s counts from.
+  ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch,
+                      Clock::time_point start)
+      : options_(options), assembly_(assembly), scratch_(scratch), start_(start) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (s.iteration == 0) {
       accepted_cost_ = s.cost;
       radius_ = s.trust_region_radius;
-      return ceres::SOLVER_CONTINUE;
+      return StopRequested() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
     }
     StepRecord row;
     row.step = static_cast<int>(rows_.size()) + 1;
@@ -454,15 +458,30 @@ class ConvergenceRecorder : public ceres::IterationCallback {
       assembly_->WriteBack(scratch_);
       options_.on_accepted_state(row, *scratch_);
     }
-    return ceres::SOLVER_CONTINUE;
+    return StopRequested() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
   }
 
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
+  // "interrupted" or "time_limit" once a stop was asked for, else empty.
+  const std::string& stop_reason() const { return stop_reason_; }
 
  private:
+  // Ceres keeps the last accepted state when a callback ends the solve (USER_SUCCESS).
+  bool StopRequested() {
+    if (options_.should_stop && options_.should_stop()) {
+      stop_reason_ = "interrupted";
+    } else if (options_.max_time_s > 0 &&
+               std::chrono::duration<double>(Clock::now() - start_).count() >= options_.max_time_s) {
+      stop_reason_ = "time_limit";
+    }
+    return !stop_reason_.empty();
+  }
+
   const SolverOptions& options_;
   const Assembly* assembly_;
   Graph* scratch_;
+  const Clock::time_point start_;
+  std::string stop_reason_;
   std::vector<StepRecord> rows_;
   double accepted_cost_ = 0;
   double radius_ = 1;
@@ -472,6 +491,9 @@ class ConvergenceRecorder : public ceres::IterationCallback {
 Status CheckOptions(const SolverOptions& options) {
   if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
   if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
+  if (!(options.max_time_s >= 0) || !std::isfinite(options.max_time_s)) {
+    return Error{"", 0, "max_time_s must be 0 (no limit) or a positive number of seconds"};
+  }
   if (options.nonmonotonic_steps < -1) {
     return Error{"", 0, "nonmonotonic_steps must be -1 (auto), 0 (off) or a positive count"};
   }
@@ -577,6 +599,7 @@ Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOption
 }
 
 Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
+  const auto start = ConvergenceRecorder::Clock::now();
   const SolverOptions options = ResolveAuto(requested, *graph);
   if (Status status = CheckOptions(options); !status.ok()) return status.error();
   if (graph->NumEdges() == 0) return Error{"", 0, "the graph has no edges: there is nothing to solve"};
@@ -635,7 +658,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
     scratch = *graph;
     ceres_options.update_state_every_iteration = true;
   }
-  ConvergenceRecorder recorder(options, &assembly, &scratch);
+  ConvergenceRecorder recorder(options, &assembly, &scratch, start);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
   {
@@ -656,6 +679,13 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   switch (summary.termination_type) {
     case ceres::CONVERGENCE: report.termination = "convergence"; break;
     case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;
+    case ceres::USER_SUCCESS:
+      report.termination = recorder.stop_reason();
+      report.termination_detail =
+          (recorder.stop_reason() == "interrupted" ? "stopped on request after "
+                                                   : "time limit reached after ") +
+          std::to_string(report.steps) + " steps; the solution is the last accepted state";
+      break;
     default: report.termination = "failure"; break;
   }
   // Ceres reports −1 for a phase that did not run.

@@ -286,6 +286,58 @@ TEST_F(ObjectCentricChartTest, EveryChartHasTheSameCostPerKind) {
   }
 }
 
+// SolverOptions::should_stop is polled after every step: the solve ends there, usable, at the
+// last accepted state (the cost the convergence rows last accepted), and says why.
+TEST_F(ObjectCentricChartTest, StopRequestEndsAtTheLastAcceptedState) {
+  int polls = 0;
+  SolverOptions options;
+  options.should_stop = [&polls] { return ++polls > 4; };  // the 5th poll: after step 4
+  Graph graph = graph_;
+  Expected<SolveReport> report = Solve(options, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->termination, "interrupted");
+  EXPECT_TRUE(report->usable);
+  ASSERT_EQ(report->steps, 4);
+  double last_accepted = report->initial_cost;
+  for (const StepRecord& row : report->convergence) {
+    if (row.accepted) last_accepted = row.trial_cost;
+  }
+  EXPECT_LT(last_accepted, report->initial_cost);
+  EXPECT_NEAR(report->final_cost, last_accepted, 1e-12 * last_accepted);
+  Expected<CostByKind> written = EvaluateCost(graph, options);
+  ASSERT_TRUE(written.ok());
+  EXPECT_NEAR(TotalCost(*written), last_accepted, 1e-12 * last_accepted);
+}
+
+TEST_F(ObjectCentricChartTest, StopBeforeTheFirstStepKeepsTheInitialValues) {
+  SolverOptions options;
+  options.should_stop = [] { return true; };
+  Graph graph = graph_;
+  Expected<SolveReport> report = Solve(options, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->termination, "interrupted");
+  EXPECT_EQ(report->steps, 0);
+  EXPECT_EQ(report->final_cost, report->initial_cost);
+  for (const auto& [id, vertex] : graph.vertices) {
+    for (int i = 0; i < kPoseSize; ++i) {  // object points pass through the solver's w = L_a·m_L
+      EXPECT_NEAR(vertex.value[i], graph_.Find(id)->value[i], 1e-12) << "vertex " << id;
+    }
+  }
+}
+
+TEST_F(ObjectCentricChartTest, TimeLimitIsItsOwnTermination) {
+  SolverOptions options;
+  options.max_time_s = 1e-9;  // reached before the first step
+  Graph graph = graph_;
+  Expected<SolveReport> report = Solve(options, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->termination, "time_limit");
+  EXPECT_TRUE(report->usable);
+  EXPECT_EQ(report->steps, 0);
+  options.max_time_s = -1;
+  EXPECT_FALSE(Solve(options, &graph).ok());
+}
+
 TEST_F(ObjectCentricChartTest, DefaultsAndObjectFrameReachTheSameOptimum) {
   ASSERT_TRUE(SolverOptions{}.world_anchored_object_points);
   ASSERT_TRUE(SolverOptions{}.world_frame_kinematic_residual);

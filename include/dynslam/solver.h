@@ -97,6 +97,14 @@ struct SolverOptions {
   bool dsc_object_motion_residual = false;
   // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
   std::array<RobustKernel, kNumEdgeKinds> kernels{};
+  // Polled before the first step and after every step: when it returns true the solve ends
+  // there, at the last accepted state, usable, with termination "interrupted". The command
+  // line sets it from SIGINT/SIGTERM; the library itself installs no signal handler.
+  std::function<bool()> should_stop;
+  // Seconds from the start of Solve (set-up included) after which the solve ends as with
+  // should_stop, with termination "time_limit"; 0: no limit. Checked between steps, so a solve
+  // overruns the limit by at most one step.
+  double max_time_s = 0;
   // Called after every linear solve Ceres reports (rejected ones included).
   std::function<void(const struct StepRecord&)> on_step;
   // For analysis (benchmarks/convergence_probe): called after every accepted step with a copy of
@@ -131,7 +139,9 @@ struct SolveReport {
   CostByKind final_cost_by_kind{};
   int iterations = 0;  // accepted steps
   int steps = 0;       // linear solves Ceres reported
-  std::string termination;         // "convergence", "no_convergence", "failure"
+  // "convergence", "no_convergence" (max_iterations), "interrupted" (should_stop),
+  // "time_limit" (max_time_s) or "failure"; all but "failure" leave a usable solution.
+  std::string termination;
   std::string termination_detail;  // Ceres's message
   std::string ceres_report;        // Ceres's Summary::FullReport() (problem sizes, phase times)
   bool usable = false;             // Ceres says the solution is usable
