@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -21,6 +20,7 @@
 #include "cli.h"
 #include "compat_flags.h"
 #include "commands.h"
+#include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
@@ -28,6 +28,7 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "solver_flags.h"
+#include "stop_signals.h"
 
 // The repository's scripts/ folder, set by apps/CMakeLists.txt; the environment variable of the
 // same name overrides it at run time (a moved or installed tree).
@@ -63,9 +64,12 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
      << "|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     const char* f = FormulationName(r.formulation);
+    const std::string& termination = r.report.termination;
+    const bool stopped_early = termination == "interrupted" || termination == "time_limit";
     md << "| " << f << " | " << Fixed(r.metrics.camera.mean_rot_deg, 4) << " | "
        << Fixed(r.metrics.camera.mean_trans_m, 4) << " | " << r.metrics.camera.count << " | "
-       << r.variables << " | " << r.edges << " | " << r.report.iterations << " | "
+       << r.variables << " | " << r.edges << " | " << r.report.iterations
+       << (stopped_early ? " (" + termination + ")" : "") << " | "
        << Fixed(r.report.time_total_s, 3) << " |\n";
     out << "I," << f << ",,camera_rot_deg," << r.metrics.camera.mean_rot_deg << "\n"
         << "I," << f << ",,camera_trans_m," << r.metrics.camera.mean_trans_m << "\n"
@@ -240,7 +244,10 @@ int RunCompare(int argc, char** argv) {
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
       "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png\n"
-      "and DIR/trajectory.png (scripts/plot_convergence.py, scripts/plot_trajectory.py).");
+      "and DIR/trajectory.png (scripts/plot_convergence.py, scripts/plot_trajectory.py).\n"
+      "--max-time limits each formulation's solve. SIGINT (Ctrl-C) or SIGTERM stops the current\n"
+      "solve after its step, writes its outputs and the tables of what finished (no plots), and\n"
+      "exits 130 or 143; a second signal quits at once.");
   parser.AddPositional("FRONTEND.g2o", &front_end_path, "front-end graph file");
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2), required", "GT");
   parser.AddString("out", &out_dir, "output directory, required", "DIR");
@@ -277,6 +284,8 @@ int RunCompare(int argc, char** argv) {
     std::cerr << "error: " << *problem << "\n";
     return kExitBadInput;
   }
+  PrintProgressAfterOneSecond(&solver_options);
+  StopOnSignals(&solver_options);
 
   ReadOptions read_options;
   compat.Apply(&read_options);
@@ -289,6 +298,13 @@ int RunCompare(int argc, char** argv) {
   if (!gt.ok()) {
     std::cerr << "error: " << gt.error().ToString() << "\n";
     return kExitBadInput;
+  }
+  // The tables mark a finished compare: a run that fails or is killed leaves none behind.
+  for (const char* name : {"tables.md", "tables.csv"}) {
+    if (Status s = RemoveIfPresent((fs::path(out_dir) / name).string()); !s.ok()) {
+      std::cerr << "error: " << s.error().ToString() << "\n";
+      return kExitFailed;
+    }
   }
   std::vector<Row> rows;
   for (const Formulation formulation : formulations) {
@@ -335,23 +351,35 @@ int RunCompare(int argc, char** argv) {
       std::cerr << "error: " << s.error().ToString() << "\n";
       return kExitFailed;
     }
-    std::ofstream(dir / "build.txt") << build_report.ToText();
+    if (Status s = WriteFileAtomically((dir / "build.txt").string(), build_report.ToText());
+        !s.ok()) {
+      std::cerr << "error: " << s.error().ToString() << "\n";
+      return kExitFailed;
+    }
     if (!report->usable) {
       std::cerr << "error: " << name << ": the solve failed: " << report->termination_detail << "\n";
       return kExitFailed;
     }
     rows.push_back(std::move(row));
+    if (StopSignal() != 0) {
+      std::fprintf(stderr, "[compare] stopped by a signal after %s: tables for what finished\n", name);
+      break;
+    }
   }
   std::string markdown, csv;
   Tables(rows, &markdown, &csv);
   if (compat.any()) markdown = "(--compat " + compat.Describe() + ": the released code's choices, SPEC §7)\n\n" + markdown;
-  std::ofstream(fs::path(out_dir) / "tables.md") << markdown;
-  std::ofstream(fs::path(out_dir) / "tables.csv") << csv;
+  for (const auto& [name, text] : {std::pair{"tables.csv", &csv}, std::pair{"tables.md", &markdown}}) {
+    if (Status s = WriteFileAtomically((fs::path(out_dir) / name).string(), *text); !s.ok()) {
+      std::cerr << "error: " << s.error().ToString() << "\n";
+      return kExitFailed;
+    }
+  }
   std::fputs(markdown.c_str(), stdout);
-  if (!no_plots) {
+  if (!no_plots && StopSignal() == 0) {
     DrawPlots(out_dir, rows, gt_path, fs::path(front_end_path).filename().string());
   }
-  return kExitOk;
+  return ExitCodeAfterStopSignal(kExitOk);
 }
 
 }  // namespace dynslam::cli

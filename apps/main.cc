@@ -1,4 +1,5 @@
 // `dynslam <command> [options]`: dispatches to one file per subcommand.
+#include <csignal>
 #include <cstring>
 #include <iostream>
 
@@ -37,6 +38,9 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f) a write then fails with EFBIG and the output writers
+  // report the file (dynslam/file_io.h), instead of SIGXFSZ ending the process mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (argc < 2) {
     PrintUsage(std::cerr);
     return dynslam::cli::kExitBadInput;

@@ -1,10 +1,10 @@
 // dynslam metrics SOLVED.g2o GT [--out FILE]   (SPEC §5)
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "cli.h"
 #include "commands.h"
+#include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/metrics.h"
@@ -52,10 +52,8 @@ int RunMetrics(int argc, char** argv) {
   const std::string json = document.Dump() + "\n";
   std::fputs(json.c_str(), stdout);
   if (!out_path.empty()) {
-    std::ofstream out(out_path, std::ios::trunc);
-    out << json;
-    if (!out) {
-      std::cerr << "error: " << out_path << ": cannot write the file\n";
+    if (Status status = WriteFileAtomically(out_path, json); !status.ok()) {
+      std::cerr << "error: " << status.error().ToString() << "\n";
       return kExitFailed;
     }
   }

@@ -2,12 +2,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "cli.h"
 #include "commands.h"
+#include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/kitti.h"
@@ -169,21 +169,14 @@ int RunSimulate(int argc, char** argv) {
   std::string header = "arguments: " + ArgumentsLine(argc, argv) + "\n";
   for (const std::string& line : simulated->header) header += line + "\n";
   const std::string graph_path = out_prefix + ".g2o", gt_path = out_prefix + ".gt.txt";
-  {
-    std::ofstream out(graph_path, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      std::cerr << "error: " << graph_path << ": cannot write the file\n";
-      return kExitFailed;
-    }
-    out << "# front-end graph written by dynslam simulate\n";
-    std::istringstream lines(header);
-    for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
-    WriteGraph(simulated->graph, out);
-    out.close();
-    if (!out) {
-      std::cerr << "error: " << graph_path << ": writing the file failed\n";
-      return kExitFailed;
-    }
+  std::ostringstream graph_text;
+  graph_text << "# front-end graph written by dynslam simulate\n";
+  std::istringstream lines(header);
+  for (std::string line; std::getline(lines, line);) graph_text << "# " << line << "\n";
+  WriteGraph(simulated->graph, graph_text);
+  if (Status status = WriteFileAtomically(graph_path, graph_text.str()); !status.ok()) {
+    std::cerr << "error: " << status.error().ToString() << "\n";
+    return kExitFailed;
   }
   if (Status status = WriteGroundTruth(simulated->ground_truth, gt_path,
                                        "ground truth written by dynslam simulate\n" + header);

@@ -13,6 +13,7 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "solver_flags.h"
+#include "stop_signals.h"
 
 namespace dynslam::cli {
 namespace {
@@ -55,7 +56,11 @@ int RunSolve(int argc, char** argv) {
   bool repair_information = false;
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
-                   "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).");
+                   "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).\n"
+                   "SIGINT (Ctrl-C) or SIGTERM stops the solve after its current step and writes\n"
+                   "them for the last accepted state (termination \"interrupted\", exit 130 or\n"
+                   "143); a second signal quits at once. Each file is written whole or not at\n"
+                   "all; summary.json, written last, marks a complete set.");
   parser.AddPositional("GRAPH", &graph_path, "graph file (g2o dialect of SPEC §1)");
   parser.AddString("out", &out_dir, "output directory (required)", "DIR");
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2) for the metrics of SPEC §5", "GT");
@@ -83,6 +88,7 @@ int RunSolve(int argc, char** argv) {
     return kExitBadInput;
   }
   PrintProgressAfterOneSecond(&options);
+  StopOnSignals(&options);
 
   ReadOptions read_options;
   read_options.skip_unknown_tags = skip_unknown;
@@ -158,7 +164,7 @@ int RunSolve(int argc, char** argv) {
     std::cerr << "error: the solve failed: " << report->termination_detail << "\n";
     return kExitFailed;
   }
-  return kExitOk;
+  return ExitCodeAfterStopSignal(kExitOk);
 }
 
 }  // namespace dynslam::cli

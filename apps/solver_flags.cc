@@ -54,6 +54,7 @@ SolverFlags::SolverFlags(ArgParser* parser)
       sparse_backend_(Name(defaults_.sparse_backend)),
       threads_(defaults_.threads),
       max_iterations_(defaults_.max_iterations),
+      max_time_(defaults_.max_time_s),
       function_tolerance_(defaults_.function_tolerance),
       gradient_tolerance_(defaults_.gradient_tolerance),
       parameter_tolerance_(defaults_.parameter_tolerance),
@@ -74,6 +75,10 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "suitesparse when Ceres has it, else eigen");
   parser->AddInt("threads", &threads_, "threads for evaluation and linear algebra", 1, 256);
   parser->AddInt("max-iterations", &max_iterations_, "most linear solves", 0, 1000000);
+  parser->AddDouble("max-time", &max_time_,
+                    "stop a solve after this many seconds (checked between steps) and save it "
+                    "as it stands: termination time_limit; 0: no limit",
+                    0, 1e9);
   parser->AddDouble("function-tolerance", &function_tolerance_,
                     "stop when |cost change| / cost is below this", 0, 1);
   parser->AddDouble("gradient-tolerance", &gradient_tolerance_,
@@ -116,6 +121,7 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   Parse(sparse_backend_, &options->sparse_backend);
   options->threads = static_cast<int>(threads_);
   options->max_iterations = static_cast<int>(max_iterations_);
+  options->max_time_s = max_time_;
   options->function_tolerance = function_tolerance_;
   options->gradient_tolerance = gradient_tolerance_;
   options->parameter_tolerance = parameter_tolerance_;

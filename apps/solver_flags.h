@@ -10,7 +10,7 @@
 
 namespace dynslam::cli {
 
-// Declares --minimizer, --linear-solver, --sparse-backend, --threads, --max-iterations, the
+// Declares --minimizer, --linear-solver, --sparse-backend, --threads, --max-iterations, --max-time, the
 // three tolerances, --fix-first and --robust on `parser`; Finish() turns them into options.
 class SolverFlags {
  public:
@@ -25,6 +25,7 @@ class SolverFlags {
   std::string sparse_backend_;
   int64_t threads_;
   int64_t max_iterations_;
+  double max_time_;
   double function_tolerance_;
   double gradient_tolerance_;
   double parameter_tolerance_;

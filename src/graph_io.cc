@@ -17,6 +17,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "dynslam/file_io.h"
+
 namespace dynslam {
 namespace {
 
@@ -871,25 +873,7 @@ Expected<Graph> ReadGraph(const std::string& path, const ReadOptions& options, R
 void WriteGraph(const Graph& graph, std::ostream& out) { out << Serialise(graph); }
 
 Status WriteGraph(const Graph& graph, const std::string& path) {
-  // Written beside the target and renamed, so a failed write never destroys an existing file.
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) return Error{path, 0, std::string("cannot write the file: ") + std::strerror(errno)};
-    out << Serialise(graph);
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      return Error{path, 0, "writing the file failed (disk full?)"};
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::remove(temporary.c_str());
-    return Error{path, 0, "cannot replace the file: " + ec.message()};
-  }
-  return Status::Ok();
+  return WriteFileAtomically(path, Serialise(graph));
 }
 
 }  // namespace dynslam

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "dynslam/file_io.h"
+
 namespace dynslam {
 namespace {
 
@@ -53,6 +55,10 @@ Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{path, 0, "cannot open the ground-truth file"};
+  return ReadGroundTruth(in, path);
+}
+
+Expected<GroundTruth> ReadGroundTruth(std::istream& in, const std::string& path) {
   GroundTruth gt;
   std::string line;
   int64_t number = 0;
@@ -121,11 +127,7 @@ Status WriteGroundTruth(const GroundTruth& ground_truth, const std::string& path
     text += "OBJECT " + std::to_string(key.second) + " " + std::to_string(key.first);
     pose_fields(pose);
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) return Error{path, 0, "cannot write the ground-truth file"};
-  return Status::Ok();
+  return WriteFileAtomically(path, text);
 }
 
 }  // namespace dynslam

@@ -43,9 +43,7 @@ bool ParseInt(std::string_view text, int64_t* value) {
 
 // Calls `record(fields, line_number)` for each non-blank line; stops at the first error.
 template <typename F>
-Status ForEachLine(const std::string& path, F record) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path, 0, "cannot open the file"};
+Status ForEachLine(std::istream& in, const std::string& path, F record) {
   std::string line;
   int64_t number = 0;
   while (std::getline(in, line)) {
@@ -56,6 +54,15 @@ Status ForEachLine(const std::string& path, F record) {
   }
   if (in.bad()) return Error{path, number, "read error"};
   return Status::Ok();
+}
+
+// `read(stream, path)` on the file at `path`.
+template <typename T>
+Expected<T> ReadFile(const std::string& path,
+                     Expected<T> (*read)(std::istream&, const std::string&)) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path, 0, "cannot open the file"};
+  return read(in, path);
 }
 
 Eigen::Matrix3d ProjectToRotation(const Eigen::Matrix3d& m) {
@@ -91,8 +98,12 @@ Pose Invert(const Pose& a) {
 }  // namespace
 
 Expected<std::vector<OxtsRecord>> ReadOxts(const std::string& path) {
+  return ReadFile<std::vector<OxtsRecord>>(path, ReadOxts);
+}
+
+Expected<std::vector<OxtsRecord>> ReadOxts(std::istream& in, const std::string& path) {
   std::vector<OxtsRecord> records;
-  const Status status = ForEachLine(path, [&](const std::vector<std::string_view>& f,
+  const Status status = ForEachLine(in, path, [&](const std::vector<std::string_view>& f,
                                               int64_t line) -> Status {
     if (f.size() != 30) {
       return Error{path, line, "an oxts record has 30 fields (devkit dataformat.txt), found " +
@@ -125,8 +136,12 @@ Expected<std::vector<OxtsRecord>> ReadOxts(const std::string& path) {
 }
 
 Expected<std::vector<LabelRecord>> ReadLabels(const std::string& path) {
+  return ReadFile<std::vector<LabelRecord>>(path, ReadLabels);
+}
+
+Expected<std::vector<LabelRecord>> ReadLabels(std::istream& in, const std::string& path) {
   std::vector<LabelRecord> labels;
-  const Status status = ForEachLine(path, [&](const std::vector<std::string_view>& f,
+  const Status status = ForEachLine(in, path, [&](const std::vector<std::string_view>& f,
                                               int64_t line) -> Status {
     if (f.size() != 17 && f.size() != 18) {
       return Error{path, line, "a label_02 record has 17 fields (18 with a score), found " +
@@ -180,10 +195,14 @@ Expected<std::vector<LabelRecord>> ReadLabels(const std::string& path) {
 }
 
 Expected<KittiCalib> ReadCalib(const std::string& path) {
+  return ReadFile<KittiCalib>(path, ReadCalib);
+}
+
+Expected<KittiCalib> ReadCalib(std::istream& in, const std::string& path) {
   KittiCalib calib;
   bool seen_p[4] = {false, false, false, false};
   bool seen_rect = false, seen_velo = false, seen_imu = false;
-  const Status status = ForEachLine(path, [&](const std::vector<std::string_view>& f,
+  const Status status = ForEachLine(in, path, [&](const std::vector<std::string_view>& f,
                                               int64_t line) -> Status {
     std::string key(f[0]);
     if (!key.empty() && key.back() == ':') key.pop_back();

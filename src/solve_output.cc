@@ -1,14 +1,11 @@
 #include "dynslam/solve_output.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
 
 namespace dynslam {
@@ -24,14 +21,6 @@ std::string Format(double value) {
 void AppendPose(std::string& line, const Pose& pose) {
   const auto& d = pose.data;
   for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += "," + Format(d[i]);  // tx ty tz qx qy qz qw
-}
-
-Status WriteText(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) return Error{path.string(), 0, "cannot write the file"};
-  return Status::Ok();
 }
 
 std::string CamerasCsv(const Graph& graph) {
@@ -117,6 +106,7 @@ Json SolverJson(const SolverOptions& options) {
       .Set("sparse_backend", Name(options.sparse_backend))
       .Set("threads", options.threads)
       .Set("max_iterations", options.max_iterations)
+      .Set("max_time_s", options.max_time_s)
       .Set("function_tolerance", options.function_tolerance)
       .Set("gradient_tolerance", options.gradient_tolerance)
       .Set("parameter_tolerance", options.parameter_tolerance)
@@ -210,11 +200,14 @@ Json SummaryJson(const SolveOutputs& outputs) {
   return summary;
 }
 
+// summary.json marks a complete set (SPEC §4): it is removed before anything else is written and
+// written last, so a directory whose write failed or was killed holds no summary.json.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Error{dir, 0, "cannot create the output directory: " + ec.message()};
   const std::filesystem::path base(dir);
+  if (Status s = RemoveIfPresent((base / "summary.json").string()); !s.ok()) return s;
   const Graph& graph = *outputs.solved;
   if (Status s = WriteGraph(graph, (base / "solution.g2o").string()); !s.ok()) return s;
   const std::pair<const char*, std::string> files[] = {
@@ -225,7 +218,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"summary.json", SummaryJson(outputs).Dump() + "\n"},
   };
   for (const auto& [name, text] : files) {
-    if (Status s = WriteText(base / name, text); !s.ok()) return s;
+    if (Status s = WriteFileAtomically((base / name).string(), text); !s.ok()) return s;
   }
   return Status::Ok();
 }

@@ -8,6 +8,7 @@
 #define DYNSLAM_GROUND_TRUTH_H_
 
 #include <cstdint>
+#include <istream>
 #include <map>
 #include <string>
 #include <utility>
@@ -26,6 +27,8 @@ struct GroundTruth {
 };
 
 Expected<GroundTruth> ReadGroundTruth(const std::string& path);
+// The same from a stream; `name` is the file name errors give.
+Expected<GroundTruth> ReadGroundTruth(std::istream& in, const std::string& name);
 // `header` lines are written as `# …` comments first (SPEC §2 frame mapping, provenance).
 Status WriteGroundTruth(const GroundTruth& ground_truth, const std::string& path,
                         const std::string& header = "");

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ struct KittiSequence {
 Expected<std::vector<OxtsRecord>> ReadOxts(const std::string& path);
 Expected<std::vector<LabelRecord>> ReadLabels(const std::string& path);
 Expected<KittiCalib> ReadCalib(const std::string& path);
+// The same from a stream; `name` is the file name errors give.
+Expected<std::vector<OxtsRecord>> ReadOxts(std::istream& in, const std::string& name);
+Expected<std::vector<LabelRecord>> ReadLabels(std::istream& in, const std::string& name);
+Expected<KittiCalib> ReadCalib(std::istream& in, const std::string& name);
 // DIR/oxts/SEQ.txt, DIR/label_02/SEQ.txt, DIR/calib/SEQ.txt. Labels must name frames of the
 // oxts file.
 Expected<KittiSequence> ReadKittiSequence(const std::string& dir, const std::string& sequence);
