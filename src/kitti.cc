@@ -157,14 +157,15 @@ Expected<std::vector<LabelRecord>> ReadLabels(std::istream& in, const std::strin
       return Error{path, line, "track id '" + std::string(f[1]) + "' is not an integer ≥ −1"};
     }
     r.type = std::string(f[2]);
-    // truncated is an integer 0-2 in tracking labels (a float in the object benchmark).
+    // truncated is an integer 0-2 in tracking labels (a float 0-1 in the object benchmark),
+    // occluded 0-3; DontCare rows have −1 for both (devkit readme).
     double truncated_value = 0;
-    if (!ParseDouble(f[3], &truncated_value)) {
-      return Error{path, line, "truncated '" + std::string(f[3]) + "' is not a number"};
+    if (!ParseDouble(f[3], &truncated_value) || !(truncated_value >= -1 && truncated_value <= 2)) {
+      return Error{path, line, "truncated '" + std::string(f[3]) + "' is not a number from −1 to 2"};
     }
     truncated = static_cast<int64_t>(truncated_value);
-    if (!ParseInt(f[4], &occluded)) {
-      return Error{path, line, "occluded '" + std::string(f[4]) + "' is not an integer"};
+    if (!ParseInt(f[4], &occluded) || occluded < -1 || occluded > 3) {
+      return Error{path, line, "occluded '" + std::string(f[4]) + "' is not an integer from −1 to 3"};
     }
     r.truncated = static_cast<int>(truncated);
     r.occluded = static_cast<int>(occluded);

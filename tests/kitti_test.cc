@@ -184,6 +184,16 @@ TEST(Kitti, BadFilesAreErrorsWithFileAndLine) {
   EXPECT_EQ(labels.error().line, 1);
   labels = ReadLabels(WriteTemp("size.label", "0 0 Car 0 0 0 1 2 3 4 0 1.6 4 1 1.6 10 0\n"));
   ASSERT_FALSE(labels.ok());
+  // Found by kitti_reader_fuzzer: a truncated value beyond int64 was cast (undefined behaviour).
+  for (const char* field : {"truncated 11111111111111111111111 0", "occluded 0 99999999999",
+                            "truncated 3 0", "occluded 0 -2"}) {
+    const std::string name = std::string(field).substr(0, std::string(field).find(' '));
+    const std::string values = std::string(field).substr(name.size() + 1);
+    labels = ReadLabels(WriteTemp("range.label", "0 0 Car " + values + " 0 1 2 3 4 1.5 1.6 4 1 1.6 10 0\n"));
+    ASSERT_FALSE(labels.ok()) << field;
+    EXPECT_EQ(labels.error().line, 1);
+    EXPECT_NE(labels.error().message.find(name), std::string::npos) << labels.error().message;
+  }
 
   Expected<KittiCalib> calib = ReadCalib(WriteTemp("missing.calib", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n"));
   ASSERT_FALSE(calib.ok());
