@@ -1,5 +1,5 @@
 // Command-line plumbing shared by the subcommands: option parsing with --help generated from
-// the declared options and their defaults, and the exit codes of STYLE.md.
+// the declared options and their defaults, and the exit codes of docs/STYLE.md.
 #ifndef DYNSLAM_APPS_CLI_H_
 #define DYNSLAM_APPS_CLI_H_
 

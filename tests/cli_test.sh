@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The `dynslam` command as a user meets it: exit codes 0/1/2 (STYLE.md), errors that name the
+# The `dynslam` command as a user meets it: exit codes 0/1/2 (docs/STYLE.md), errors that name the
 # file and line, outputs of SPEC §4. Usage: cli_test.sh DYNSLAM_BINARY REPOSITORY_ROOT
 set -u
 dynslam="$1"

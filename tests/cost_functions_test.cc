@@ -1,6 +1,6 @@
 // Each residual of SPEC §1.2–§1.3: zero at a consistent configuration, one value computed by
 // hand, and its Jacobian through the manifold's Plus against central differences at the
-// identity, at 1e-9 rad, at a generic pose and near π (STYLE.md).
+// identity, at 1e-9 rad, at a generic pose and near π (docs/STYLE.md).
 #include <cmath>
 #include <memory>
 #include <random>
@@ -92,7 +92,7 @@ double JacobianError(const ceres::CostFunction& cost, const std::vector<Block>& 
   return worst;
 }
 
-// The poses a Jacobian is checked at (STYLE.md): identity, 1e-9 rad, generic, near π.
+// The poses a Jacobian is checked at (docs/STYLE.md): identity, 1e-9 rad, generic, near π.
 std::vector<Pose> CheckPoses() {
   Vector6d tiny, generic, near_pi;
   tiny << 1e-9, 0, 0, 0.1, 0.2, 0.3;

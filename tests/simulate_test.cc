@@ -260,8 +260,9 @@ TEST(Simulate, SyntheticScene) {
   EXPECT_GT(sim.statistics.dynamic_breaks, 0);
 }
 
-// Sequence 0003: an independent simulator (../shared/reference/kitti_0003/simulate.txt and the
-// header of its gt.txt) found cars 0, 1 and van 5 moving and objects 2, 3, 4, 6, 7, 8 parked.
+// Sequence 0003: an independent simulator (the GTSAM reference set's kitti_0003 scene: its
+// simulate.txt and the header of its gt.txt) found cars 0, 1 and van 5 moving and objects 2, 3,
+// 4, 6, 7, 8 parked.
 TEST(Simulate, MovingAndParkedObjectsOf0003) {
   SimulateOptions options;
   const Scene scene = KittiScene("0003", options);

@@ -1,4 +1,4 @@
-// Errors on user input are values, never aborts (STYLE.md, SPEC §1.6).
+// Errors on user input are values, never aborts (docs/STYLE.md, SPEC §1.6).
 //
 // An `Error` names where the problem is (file and 1-based line when known) and says in one
 // sentence what is wrong. `Expected<T>` holds either a value or an Error; `Status` is
