@@ -1,8 +1,9 @@
-// dynslam compare FRONTEND.g2o --gt GT --out DIR [--formulations wc,oc_a,…] [options]
+// dynslam compare FRONTEND.g2o --out DIR [--gt GT] [--formulations wc,oc_a,…] [options]
 //
 // Builds every formulation from one front-end file (identical data, SPEC §3), solves each the
 // same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side,
-// then draws the convergence (Fig. 4) and trajectory plots with scripts/plot_*.py.
+// then draws the convergence (Fig. 4) and trajectory plots with scripts/plot_*.py. Without ground
+// truth it tabulates the solves alone.
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -46,7 +47,7 @@ struct Row {
   int64_t variables = 0;
   int64_t edges = 0;
   SolveReport report;
-  Metrics metrics;
+  std::optional<Metrics> metrics;  // with ground truth
 };
 
 std::string Fixed(double value, int digits) {
@@ -55,7 +56,44 @@ std::string Fixed(double value, int digits) {
   return buffer;
 }
 
+// "37", or "37 (interrupted)" for a solve a signal or --max-time stopped.
+std::string Iterations(const SolveReport& report) {
+  const bool stopped_early =
+      report.termination == "interrupted" || report.termination == "time_limit";
+  return std::to_string(report.iterations) + (stopped_early ? " (" + report.termination + ")" : "");
+}
+
+// Without ground truth: what every formulation's solve did, the accuracy columns marked.
+void TablesWithoutGroundTruth(const std::vector<Row>& rows, std::string* markdown,
+                              std::string* csv) {
+  std::ostringstream md, out;
+  out << "table,formulation,object,quantity,value\n";
+  md << "### Table I without ground truth: problem size and solve\n\n"
+     << "No ground truth (--gt): each segment's first object pose started at the centroid of its "
+        "points with identity rotation (SPEC §3.3); the camera, object motion and object pose "
+        "errors (Tables I-III) need ground truth.\n\n"
+     << "| formulation | variables | edges | steps | iterations | final cost | solve time (s) | camera E_r (deg) | camera E_t (m) |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    const char* f = FormulationName(r.formulation);
+    char cost[32];
+    std::snprintf(cost, sizeof(cost), "%.10g", r.report.final_cost);
+    md << "| " << f << " | " << r.variables << " | " << r.edges << " | " << r.report.steps << " | "
+       << Iterations(r.report) << " | " << cost << " | " << Fixed(r.report.time_total_s, 3)
+       << " | needs --gt | needs --gt |\n";
+    out << "I," << f << ",,variables," << r.variables << "\n"
+        << "I," << f << ",,edges," << r.edges << "\n"
+        << "I," << f << ",,steps," << r.report.steps << "\n"
+        << "I," << f << ",,iterations," << r.report.iterations << "\n"
+        << "I," << f << ",,final_cost," << cost << "\n"
+        << "I," << f << ",,solve_time_s," << r.report.time_total_s << "\n";
+  }
+  *markdown = md.str();
+  *csv = out.str();
+}
+
 // Tables I–III as Markdown, and the same numbers as CSV (table,formulation,object,quantity,value).
+// Every row has metrics.
 void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* csv) {
   std::ostringstream md, out;
   out << "table,formulation,object,quantity,value\n";
@@ -64,15 +102,13 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
      << "|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     const char* f = FormulationName(r.formulation);
-    const std::string& termination = r.report.termination;
-    const bool stopped_early = termination == "interrupted" || termination == "time_limit";
-    md << "| " << f << " | " << Fixed(r.metrics.camera.mean_rot_deg, 4) << " | "
-       << Fixed(r.metrics.camera.mean_trans_m, 4) << " | " << r.metrics.camera.count << " | "
-       << r.variables << " | " << r.edges << " | " << r.report.iterations
-       << (stopped_early ? " (" + termination + ")" : "") << " | "
-       << Fixed(r.report.time_total_s, 3) << " |\n";
-    out << "I," << f << ",,camera_rot_deg," << r.metrics.camera.mean_rot_deg << "\n"
-        << "I," << f << ",,camera_trans_m," << r.metrics.camera.mean_trans_m << "\n"
+    const ErrorMean& camera = r.metrics->camera;
+    md << "| " << f << " | " << Fixed(camera.mean_rot_deg, 4) << " | "
+       << Fixed(camera.mean_trans_m, 4) << " | " << camera.count << " | " << r.variables << " | "
+       << r.edges << " | " << Iterations(r.report) << " | " << Fixed(r.report.time_total_s, 3)
+       << " |\n";
+    out << "I," << f << ",,camera_rot_deg," << camera.mean_rot_deg << "\n"
+        << "I," << f << ",,camera_trans_m," << camera.mean_trans_m << "\n"
         << "I," << f << ",,variables," << r.variables << "\n"
         << "I," << f << ",,solve_time_s," << r.report.time_total_s << "\n";
   }
@@ -80,7 +116,7 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
                           const ObjectErrors Metrics::*family) {
     std::set<int64_t> objects;
     for (const Row& r : rows) {
-      for (const auto& [object, mean] : (r.metrics.*family).per_object) objects.insert(object);
+      for (const auto& [object, mean] : (*r.metrics.*family).per_object) objects.insert(object);
     }
     md << "\n### " << title << "\n\n| object |";
     for (const Row& r : rows) md << " " << FormulationName(r.formulation) << " E_r (deg) | E_t (m) |";
@@ -90,7 +126,7 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
     for (const int64_t object : objects) {
       md << "| " << object << " |";
       for (const Row& r : rows) {
-        const auto& per_object = (r.metrics.*family).per_object;
+        const auto& per_object = (*r.metrics.*family).per_object;
         auto it = per_object.find(object);
         if (it == per_object.end()) {
           md << " – | – |";
@@ -106,12 +142,12 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
     }
     md << "| mean |";
     for (const Row& r : rows) {
-      md << " " << Fixed((r.metrics.*family).mean_rot_deg, 4) << " | "
-         << Fixed((r.metrics.*family).mean_trans_m, 4) << " |";
+      md << " " << Fixed((*r.metrics.*family).mean_rot_deg, 4) << " | "
+         << Fixed((*r.metrics.*family).mean_trans_m, 4) << " |";
       out << id << "," << FormulationName(r.formulation) << ",mean,rot_deg,"
-          << (r.metrics.*family).mean_rot_deg << "\n"
+          << (*r.metrics.*family).mean_rot_deg << "\n"
           << id << "," << FormulationName(r.formulation) << ",mean,trans_m,"
-          << (r.metrics.*family).mean_trans_m << "\n";
+          << (*r.metrics.*family).mean_trans_m << "\n";
     }
     md << "\n";
   };
@@ -196,7 +232,6 @@ void DrawPlots(const std::string& out_dir, const std::vector<Row>& rows, const s
                                                                  : DYNSLAM_SCRIPTS_DIR;
   std::error_code ec;
   const fs::path out = fs::absolute(out_dir, ec);  // absolute: no path can look like an option
-  const std::string gt = fs::absolute(gt_path, ec).string();
   std::vector<std::string> labels;
   for (const Row& row : rows) labels.push_back(FormulationName(row.formulation));
 
@@ -229,8 +264,82 @@ void DrawPlots(const std::string& out_dir, const std::vector<Row>& rows, const s
   };
   draw("plot_convergence.py", "convergence.png", "convergence.csv",
        {"--title", title + ": convergence (Fig. 4)"});
-  draw("plot_trajectory.py", "trajectory.png", "",
-       {"--gt", gt, "--title", title + ": trajectories (top view, x-z)"});
+  std::vector<std::string> trajectory_args = {"--title", title + ": trajectories (top view, x-z)"};
+  if (!gt_path.empty()) {  // drawn dashed
+    trajectory_args.insert(trajectory_args.end(), {"--gt", fs::absolute(gt_path, ec).string()});
+  }
+  draw("plot_trajectory.py", "trajectory.png", "", trajectory_args);
+}
+
+// Builds one formulation into DIR/<f>/graph.g2o, solves it, scores it when there is ground truth
+// and writes the solve's outputs (SPEC §4) and build.txt beside it. On failure: the error is
+// printed, *exit_code set and nothing returned.
+std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulation,
+                                    const BuildOptions& build_options,
+                                    const SolverOptions& solver_options, const CompatFlags& compat,
+                                    const GroundTruth* gt, const fs::path& out_dir,
+                                    const std::string& front_end_name, int* exit_code) {
+  const char* name = FormulationName(formulation);
+  auto fail = [exit_code](const Error& error, int code = kExitFailed) {
+    std::cerr << "error: " << error.ToString() << "\n";
+    *exit_code = code;
+    return std::nullopt;
+  };
+  BuildReport build_report;
+  Expected<Graph> graph =
+      BuildFormulation(front_end, formulation, build_options, gt, &build_report, front_end_name);
+  if (!graph.ok()) return fail(graph.error(), kExitBadInput);
+  const fs::path dir = out_dir / name;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (Status s = WriteGraph(*graph, (dir / "graph.g2o").string()); !s.ok()) {
+    return fail(s.error());
+  }
+  std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n", name,
+               graph->vertices.size(), graph->NumEdges());
+  SolverOptions options = solver_options;
+  compat.Apply(formulation == Formulation::kWorldCentric, &options);
+  Row row;
+  row.formulation = formulation;
+  row.variables = static_cast<int64_t>(graph->vertices.size());
+  row.edges = static_cast<int64_t>(graph->NumEdges());
+  Expected<SolveReport> report = Solve(options, &*graph);
+  if (!report.ok()) {
+    Error error = report.error();
+    error.message = std::string(name) + ": " + error.message;
+    return fail(error);
+  }
+  row.report = std::move(report).value();
+  SolveOutputs outputs;
+  outputs.input = (dir / "graph.g2o").string();
+  outputs.solved = &*graph;
+  outputs.report = &row.report;
+  outputs.warnings = build_report.warnings;
+  if (gt) {
+    row.metrics = ComputeMetrics(*graph, *gt);
+    outputs.metrics = MetricsJson(*row.metrics);
+    for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *gt)) {
+      outputs.object_poses.push_back({key.first, key.second, pose});
+    }
+  } else {
+    outputs.warnings.push_back(formulation == Formulation::kWorldCentric
+                                   ? "no ground truth: no metrics"
+                                   : "no ground truth: no metrics; each segment's first object "
+                                     "pose started by the centroid rule (SPEC §3.3)");
+    outputs.object_poses = ObjectPoseVariables(*graph);
+  }
+  if (Status s = WriteSolveOutputs(dir.string(), outputs); !s.ok()) {
+    return fail(s.error());
+  }
+  if (Status s = WriteFileAtomically((dir / "build.txt").string(), build_report.ToText());
+      !s.ok()) {
+    return fail(s.error());
+  }
+  if (!row.report.usable) {
+    return fail(Error{"", 0, std::string(name) + ": the solve failed: " +
+                                 row.report.termination_detail});
+  }
+  return row;
 }
 
 }  // namespace
@@ -239,7 +348,7 @@ int RunCompare(int argc, char** argv) {
   std::string front_end_path, gt_path, out_dir, formulation_list = "wc,oc_a,oc_b,oc_c";
   bool no_plots = false;
   ArgParser parser(
-      "dynslam compare FRONTEND.g2o --gt GT --out DIR [options]",
+      "dynslam compare FRONTEND.g2o --out DIR [--gt GT] [options]",
       "Builds every formulation from one front-end file (identical data), solves each with the\n"
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
@@ -249,7 +358,11 @@ int RunCompare(int argc, char** argv) {
       "solve after its step, writes its outputs and the tables of what finished (no plots), and\n"
       "exits 130 or 143; a second signal quits at once.");
   parser.AddPositional("FRONTEND.g2o", &front_end_path, "front-end graph file");
-  parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2), required", "GT");
+  parser.AddString("gt", &gt_path,
+                   "ground-truth file (SPEC §2): the errors of Tables I-III and each segment's "
+                   "first object pose; without it, only the solves are tabulated and object poses "
+                   "start by the centroid rule (SPEC §3.3)",
+                   "GT");
   parser.AddString("out", &out_dir, "output directory, required", "DIR");
   parser.AddString("formulations", &formulation_list, "comma-separated subset of wc,oc_a,oc_b,oc_c",
                    "LIST");
@@ -262,8 +375,8 @@ int RunCompare(int argc, char** argv) {
     std::cerr << "error: " << *problem << "\n";
     return kExitBadInput;
   }
-  if (gt_path.empty() || out_dir.empty()) {
-    std::cerr << "error: --gt GT and --out DIR are required\n";
+  if (out_dir.empty()) {
+    std::cerr << "error: --out DIR is required\n";
     return kExitBadInput;
   }
   std::vector<Formulation> formulations;
@@ -294,10 +407,14 @@ int RunCompare(int argc, char** argv) {
     std::cerr << "error: " << front_end.error().ToString() << "\n";
     return kExitBadInput;
   }
-  Expected<GroundTruth> gt = ReadGroundTruth(gt_path);
-  if (!gt.ok()) {
-    std::cerr << "error: " << gt.error().ToString() << "\n";
-    return kExitBadInput;
+  std::optional<GroundTruth> gt;
+  if (!gt_path.empty()) {
+    Expected<GroundTruth> read = ReadGroundTruth(gt_path);
+    if (!read.ok()) {
+      std::cerr << "error: " << read.error().ToString() << "\n";
+      return kExitBadInput;
+    }
+    gt = std::move(read).value();
   }
   // The tables mark a finished compare: a run that fails or is killed leaves none behind.
   for (const char* name : {"tables.md", "tables.csv"}) {
@@ -307,67 +424,26 @@ int RunCompare(int argc, char** argv) {
     }
   }
   std::vector<Row> rows;
+  const std::string name = fs::path(front_end_path).filename().string();
   for (const Formulation formulation : formulations) {
-    const char* name = FormulationName(formulation);
-    BuildReport build_report;
-    Expected<Graph> graph = BuildFormulation(*front_end, formulation, build_options, &*gt,
-                                             &build_report, fs::path(front_end_path).filename().string());
-    if (!graph.ok()) {
-      std::cerr << "error: " << graph.error().ToString() << "\n";
-      return kExitBadInput;
-    }
-    const fs::path dir = fs::path(out_dir) / name;
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (Status s = WriteGraph(*graph, (dir / "graph.g2o").string()); !s.ok()) {
-      std::cerr << "error: " << s.error().ToString() << "\n";
-      return kExitFailed;
-    }
-    std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n", name,
-                 graph->vertices.size(), graph->NumEdges());
-    SolverOptions options = solver_options;
-    compat.Apply(formulation == Formulation::kWorldCentric, &options);
-    Row row;
-    row.formulation = formulation;
-    row.variables = static_cast<int64_t>(graph->vertices.size());
-    row.edges = static_cast<int64_t>(graph->NumEdges());
-    Expected<SolveReport> report = Solve(options, &*graph);
-    if (!report.ok()) {
-      std::cerr << "error: " << name << ": " << report.error().ToString() << "\n";
-      return kExitFailed;
-    }
-    row.report = *report;
-    row.metrics = ComputeMetrics(*graph, *gt);
-    SolveOutputs outputs;
-    outputs.input = (dir / "graph.g2o").string();
-    outputs.solved = &*graph;
-    outputs.report = &row.report;
-    outputs.metrics = MetricsJson(row.metrics);
-    outputs.warnings = build_report.warnings;
-    for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *gt)) {
-      outputs.object_poses.push_back({key.first, key.second, pose});
-    }
-    if (Status s = WriteSolveOutputs(dir.string(), outputs); !s.ok()) {
-      std::cerr << "error: " << s.error().ToString() << "\n";
-      return kExitFailed;
-    }
-    if (Status s = WriteFileAtomically((dir / "build.txt").string(), build_report.ToText());
-        !s.ok()) {
-      std::cerr << "error: " << s.error().ToString() << "\n";
-      return kExitFailed;
-    }
-    if (!report->usable) {
-      std::cerr << "error: " << name << ": the solve failed: " << report->termination_detail << "\n";
-      return kExitFailed;
-    }
-    rows.push_back(std::move(row));
+    int exit_code = kExitOk;
+    std::optional<Row> row =
+        SolveFormulation(*front_end, formulation, build_options, solver_options, compat,
+                         gt ? &*gt : nullptr, fs::path(out_dir), name, &exit_code);
+    if (!row) return exit_code;
+    rows.push_back(std::move(*row));
     if (StopSignal() != 0) {
-      std::fprintf(stderr, "[compare] stopped by a signal after %s: tables for what finished\n", name);
+      std::fprintf(stderr, "[compare] stopped by a signal after %s: tables for what finished\n",
+                   FormulationName(formulation));
       break;
     }
   }
   std::string markdown, csv;
-  Tables(rows, &markdown, &csv);
+  if (gt) {
+    Tables(rows, &markdown, &csv);
+  } else {
+    TablesWithoutGroundTruth(rows, &markdown, &csv);
+  }
   if (compat.any()) markdown = "(--compat " + compat.Describe() + ": the released code's choices, SPEC §7)\n\n" + markdown;
   for (const auto& [name, text] : {std::pair{"tables.csv", &csv}, std::pair{"tables.md", &markdown}}) {
     if (Status s = WriteFileAtomically((fs::path(out_dir) / name).string(), *text); !s.ok()) {

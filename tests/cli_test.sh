@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The `dynslam` command as a user meets it: exit codes 0/1/2 (docs/STYLE.md), errors that name the
-# file and line, outputs of SPEC §4. Usage: cli_test.sh DYNSLAM_BINARY REPOSITORY_ROOT
+# The `dynslam` command as a user meets it: exit codes 0/1/2 (docs/STYLE.md), errors that name
+# the file and line, outputs of SPEC §4. Usage: cli_test.sh DYNSLAM_BINARY REPOSITORY_ROOT
 set -u
 dynslam="$1"
 root="$2"
@@ -86,6 +86,15 @@ if /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1; then
   done
 else
   echo "SKIP: plot cases (/usr/bin/python3 cannot import matplotlib)"
+fi
+check "compare without ground truth" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/compare_nogt" --formulations wc,oc_b
+expect_output "compare without ground truth says what needs it" "need ground truth"
+if [ "$(grep -c '| needs --gt | needs --gt |' "$work/compare_nogt/tables.md")" = 2 ] &&
+   [ -s "$work/compare_nogt/convergence.png" ] && ! grep -q '"metrics"' "$work/compare_nogt/oc_b/summary.json" &&
+   grep -q 'centroid rule' "$work/compare_nogt/oc_b/summary.json"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: compare without ground truth: tables, plot or summary"
 fi
 check "compare without the plot scripts warns and succeeds" 0 env DYNSLAM_SCRIPTS_DIR="$work/none" "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_noscripts" --formulations wc
 expect_output "missing plot scripts give a warning" "^warning: "
