@@ -317,7 +317,7 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   outputs.warnings = build_report.warnings;
   if (gt) {
     row.metrics = ComputeMetrics(*graph, *gt);
-    outputs.metrics = MetricsJson(*row.metrics);
+    outputs.metrics = row.metrics;
     for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *gt)) {
       outputs.object_poses.push_back({key.first, key.second, pose});
     }

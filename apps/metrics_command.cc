@@ -8,6 +8,7 @@
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/metrics.h"
+#include "src/json_io.h"
 
 namespace dynslam::cli {
 
@@ -40,16 +41,15 @@ int RunMetrics(int argc, char** argv) {
   }
   // The shape of the reference metrics.json: the metrics and what they were computed from,
   // keys in alphabetical order.
-  const Json metrics = MetricsJson(ComputeMetrics(*solved, *gt));
-  Json document = Json::Object();
-  document.Set("camera", *metrics.Find("camera"));
-  if (solved->formulation) document.Set("formulation", *solved->formulation);
-  document.Set("ground_truth", gt_path)
-      .Set("object_centric", *metrics.Find("object_centric"))
-      .Set("object_motion", *metrics.Find("object_motion"))
-      .Set("object_pose", *metrics.Find("object_pose"))
-      .Set("solution", solved_path);
-  const std::string json = document.Dump() + "\n";
+  const JsonValue metrics = MetricsToJson(ComputeMetrics(*solved, *gt));
+  JsonValue document = {{"camera", metrics.at("camera")}};
+  if (solved->formulation) document["formulation"] = *solved->formulation;
+  document["ground_truth"] = gt_path;
+  document["object_centric"] = metrics.at("object_centric");
+  document["object_motion"] = metrics.at("object_motion");
+  document["object_pose"] = metrics.at("object_pose");
+  document["solution"] = solved_path;
+  const std::string json = DumpJson(document) + "\n";
   std::fputs(json.c_str(), stdout);
   if (!out_path.empty()) {
     if (Status status = WriteFileAtomically(out_path, json); !status.ok()) {

@@ -133,7 +133,7 @@ int RunSolve(int argc, char** argv) {
   outputs.solved = &*graph;
   outputs.report = &*report;
   if (ground_truth) {
-    outputs.metrics = MetricsJson(ComputeMetrics(*graph, *ground_truth));
+    outputs.metrics = ComputeMetrics(*graph, *ground_truth);
     for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *ground_truth)) {
       outputs.object_poses.push_back({key.first, key.second, pose});
     }
@@ -147,18 +147,14 @@ int RunSolve(int argc, char** argv) {
   PrintSummary(outputs, out_dir);
   if (ceres_report) std::printf("%s", report->ceres_report.c_str());
   if (outputs.metrics) {
-    const Json& m = *outputs.metrics;
-    std::printf("metrics (SPEC §5): camera %.4f deg %.4f m over %g pairs; object motion %.4f deg "
-                "%.4f m over %g motions; object pose %.4f deg %.4f m over %g pairs\n",
-                m.FindPath({"camera", "mean_rot_deg"})->number(),
-                m.FindPath({"camera", "mean_trans_m"})->number(),
-                m.FindPath({"camera", "pairs"})->number(),
-                m.FindPath({"object_motion", "mean_rot_deg"})->number(),
-                m.FindPath({"object_motion", "mean_trans_m"})->number(),
-                m.FindPath({"object_motion", "motions"})->number(),
-                m.FindPath({"object_pose", "mean_rot_deg"})->number(),
-                m.FindPath({"object_pose", "mean_trans_m"})->number(),
-                m.FindPath({"object_pose", "pairs"})->number());
+    const Metrics& m = *outputs.metrics;
+    std::printf("metrics (SPEC §5): camera %.4f deg %.4f m over %lld pairs; object motion %.4f deg "
+                "%.4f m over %lld motions; object pose %.4f deg %.4f m over %lld pairs\n",
+                m.camera.mean_rot_deg, m.camera.mean_trans_m,
+                static_cast<long long>(m.camera.count), m.object_motion.mean_rot_deg,
+                m.object_motion.mean_trans_m, static_cast<long long>(m.object_motion.count),
+                m.object_pose.mean_rot_deg, m.object_pose.mean_trans_m,
+                static_cast<long long>(m.object_pose.count));
   }
   if (!report->usable) {
     std::cerr << "error: the solve failed: " << report->termination_detail << "\n";

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "dynslam/se3.h"  // header-only, Eigen only
+#include "src/json_io.h"
 
 namespace dynslam {
 namespace {
@@ -154,37 +155,6 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
   return metrics;
 }
 
-Json MetricsJson(const Metrics& metrics) {
-  auto family = [](const ObjectErrors& errors, const char* count_name) {
-    Json per_object = Json::Object();
-    for (const auto& [object, mean] : errors.per_object) {
-      per_object.Set(std::to_string(object), Json::Object()
-                                                 .Set(count_name, mean.count)
-                                                 .Set("mean_rot_deg", mean.mean_rot_deg)
-                                                 .Set("mean_trans_m", mean.mean_trans_m));
-    }
-    return Json::Object()
-        .Set(count_name, errors.count)
-        .Set("objects", errors.objects)
-        .Set("mean_rot_deg", errors.mean_rot_deg)
-        .Set("mean_trans_m", errors.mean_trans_m)
-        .Set("per_object", std::move(per_object));
-  };
-  Json object_pose = family(metrics.object_pose, "pairs");
-  // Only world-centric poses are composed from a ground-truth start (the reference files carry
-  // the count for wc only).
-  if (!metrics.object_centric) {
-    object_pose.Set("segments_without_ground_truth_start",
-                    metrics.segments_without_ground_truth_start);
-  }
-  return Json::Object()
-      .Set("object_centric", metrics.object_centric)
-      .Set("camera", Json::Object()
-                         .Set("pairs", metrics.camera.count)
-                         .Set("mean_rot_deg", metrics.camera.mean_rot_deg)
-                         .Set("mean_trans_m", metrics.camera.mean_trans_m))
-      .Set("object_motion", family(metrics.object_motion, "motions"))
-      .Set("object_pose", std::move(object_pose));
-}
+std::string MetricsJson(const Metrics& metrics) { return DumpJson(MetricsToJson(metrics)); }
 
 }  // namespace dynslam

@@ -7,6 +7,7 @@
 
 #include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
+#include "src/json_io.h"
 
 namespace dynslam {
 namespace {
@@ -74,9 +75,9 @@ std::string ConvergenceCsv(const SolveReport& report) {
   return text;
 }
 
-Json CostJson(const CostByKind& cost) {
-  Json json = Json::Object();
-  for (const EdgeKind kind : kAllEdgeKinds) json.Set(EdgeKindName(kind), cost[static_cast<int>(kind)]);
+JsonValue CostJson(const CostByKind& cost) {
+  JsonValue json = JsonValue::object();
+  for (const EdgeKind kind : kAllEdgeKinds) json[EdgeKindName(kind)] = cost[static_cast<int>(kind)];
   return json;
 }
 
@@ -90,33 +91,32 @@ const char* KernelName(RobustKernel::Type type) {
 }
 
 // `options` as the solve used them (SolveReport::options_used: no auto left).
-Json SolverJson(const SolverOptions& options) {
-  Json kernels = Json::Object();
+JsonValue SolverJson(const SolverOptions& options) {
+  JsonValue kernels = JsonValue::object();
   for (const EdgeKind kind : kAllEdgeKinds) {
     const RobustKernel& kernel = options.kernels[static_cast<int>(kind)];
     if (kernel.type == RobustKernel::Type::kNone) continue;
-    kernels.Set(EdgeKindName(kind), Json::Object()
-                                        .Set("type", KernelName(kernel.type))
-                                        .Set("threshold", kernel.threshold));
+    kernels[EdgeKindName(kind)] = {{"type", KernelName(kernel.type)},
+                                   {"threshold", kernel.threshold}};
   }
-  return Json::Object()
-      .Set("library", "Ceres Solver 2.1 (dynslam)")
-      .Set("minimizer", Name(options.minimizer))
-      .Set("linear_solver", Name(options.linear_solver))
-      .Set("sparse_backend", Name(options.sparse_backend))
-      .Set("threads", options.threads)
-      .Set("max_iterations", options.max_iterations)
-      .Set("max_time_s", options.max_time_s)
-      .Set("function_tolerance", options.function_tolerance)
-      .Set("gradient_tolerance", options.gradient_tolerance)
-      .Set("parameter_tolerance", options.parameter_tolerance)
-      .Set("initial_lambda", options.initial_lambda)
-      .Set("nonmonotonic_steps", options.nonmonotonic_steps)
-      .Set("fix_first", options.fix_first)
-      .Set("eliminate_object_points", options.eliminate_object_points)
-      .Set("object_point_variables", options.world_anchored_object_points ? "world" : "object")
-      .Set("kinematic_residual_frame", options.world_frame_kinematic_residual ? "world" : "object")
-      .Set("robust_kernels", std::move(kernels));
+  return JsonValue{
+      {"library", "Ceres Solver 2.1 (dynslam)"},
+      {"minimizer", Name(options.minimizer)},
+      {"linear_solver", Name(options.linear_solver)},
+      {"sparse_backend", Name(options.sparse_backend)},
+      {"threads", options.threads},
+      {"max_iterations", options.max_iterations},
+      {"max_time_s", options.max_time_s},
+      {"function_tolerance", options.function_tolerance},
+      {"gradient_tolerance", options.gradient_tolerance},
+      {"parameter_tolerance", options.parameter_tolerance},
+      {"initial_lambda", options.initial_lambda},
+      {"nonmonotonic_steps", options.nonmonotonic_steps},
+      {"fix_first", options.fix_first},
+      {"eliminate_object_points", options.eliminate_object_points},
+      {"object_point_variables", options.world_anchored_object_points ? "world" : "object"},
+      {"kinematic_residual_frame", options.world_frame_kinematic_residual ? "world" : "object"},
+      {"robust_kernels", std::move(kernels)}};
 }
 
 }  // namespace
@@ -142,62 +142,59 @@ std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph) {
   return VariablesWithRole(graph, Role::kObjectPose);
 }
 
-Json SummaryJson(const SolveOutputs& outputs) {
+std::string SummaryJson(const SolveOutputs& outputs) {
   const SolveReport& report = *outputs.report;
   std::string source;
   const std::string formulation = FormulationOf(*outputs.solved, &source);
 
-  Json variables = Json::Object();
+  JsonValue variables = JsonValue::object();
   int64_t total_variables = 0;
   for (size_t r = 0; r < kAllRoles.size(); ++r) {
-    variables.Set(RoleName(kAllRoles[r]), report.variables_by_role[r]);
+    variables[RoleName(kAllRoles[r])] = report.variables_by_role[r];
     total_variables += report.variables_by_role[r];
   }
-  variables.Set("unused", report.unused_variables);
-  variables.Set("total", total_variables);
+  variables["unused"] = report.unused_variables;
+  variables["total"] = total_variables;
 
-  Json edges = Json::Object();
+  JsonValue edges = JsonValue::object();
   int64_t total_edges = 0;
   for (const EdgeKind kind : kAllEdgeKinds) {
-    edges.Set(EdgeKindName(kind), report.edges_by_kind[static_cast<int>(kind)]);
+    edges[EdgeKindName(kind)] = report.edges_by_kind[static_cast<int>(kind)];
     total_edges += report.edges_by_kind[static_cast<int>(kind)];
   }
-  edges.Set("total", total_edges);
+  edges["total"] = total_edges;
 
-  Json held = Json::Array();
-  for (const VertexId id : report.held_constant) held.Push(id);
-  Json warnings = Json::Array();
-  for (const std::string& warning : outputs.warnings) warnings.Push(warning);
-  for (const std::string& warning : report.warnings) warnings.Push(warning);
+  JsonValue warnings = outputs.warnings;
+  for (const std::string& warning : report.warnings) warnings.push_back(warning);
 
-  Json summary = Json::Object();
-  summary.Set("input", outputs.input)
-      .Set("formulation", formulation)
-      .Set("formulation_source", source)
-      .Set("variables", std::move(variables))
-      .Set("edges", std::move(edges))
-      .Set("initial_cost", report.initial_cost)
-      .Set("final_cost", report.final_cost)
-      .Set("cost_by_kind", Json::Object()
-                               .Set("initial", CostJson(report.initial_cost_by_kind))
-                               .Set("final", CostJson(report.final_cost_by_kind)))
-      .Set("iterations", report.iterations)
-      .Set("steps", report.steps)
-      .Set("termination", report.termination)
-      .Set("termination_detail", report.termination_detail)
-      .Set("usable", report.usable)
-      .Set("time_s", Json::Object()
-                         .Set("total", report.time_total_s)
-                         .Set("preprocessing", report.time_preprocessor_s)
-                         .Set("minimizer", report.time_minimizer_s)
-                         .Set("residual_jacobian_evaluation", report.time_evaluation_s)
-                         .Set("linear_solve", report.time_linear_solver_s))
-      .Set("schur_ordering", report.eliminated_first)
-      .Set("held_constant", std::move(held))
-      .Set("solver", SolverJson(report.options_used))
-      .Set("warnings", std::move(warnings));
-  if (outputs.metrics) summary.Set("metrics", *outputs.metrics);
-  return summary;
+  JsonValue summary{
+      {"input", outputs.input},
+      {"formulation", formulation},
+      {"formulation_source", source},
+      {"variables", std::move(variables)},
+      {"edges", std::move(edges)},
+      {"initial_cost", report.initial_cost},
+      {"final_cost", report.final_cost},
+      {"cost_by_kind",
+       {{"initial", CostJson(report.initial_cost_by_kind)},
+        {"final", CostJson(report.final_cost_by_kind)}}},
+      {"iterations", report.iterations},
+      {"steps", report.steps},
+      {"termination", report.termination},
+      {"termination_detail", report.termination_detail},
+      {"usable", report.usable},
+      {"time_s",
+       {{"total", report.time_total_s},
+        {"preprocessing", report.time_preprocessor_s},
+        {"minimizer", report.time_minimizer_s},
+        {"residual_jacobian_evaluation", report.time_evaluation_s},
+        {"linear_solve", report.time_linear_solver_s}}},
+      {"schur_ordering", report.eliminated_first},
+      {"held_constant", report.held_constant},
+      {"solver", SolverJson(report.options_used)},
+      {"warnings", std::move(warnings)}};
+  if (outputs.metrics) summary["metrics"] = MetricsToJson(*outputs.metrics);
+  return DumpJson(summary);
 }
 
 // summary.json marks a complete set (SPEC §4): it is removed before anything else is written and
@@ -215,7 +212,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"motions.csv", ObjectFrameCsv(VariablesWithRole(graph, Role::kMotion))},
       {"object_poses.csv", ObjectFrameCsv(outputs.object_poses)},
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
-      {"summary.json", SummaryJson(outputs).Dump() + "\n"},
+      {"summary.json", SummaryJson(outputs) + "\n"},
   };
   for (const auto& [name, text] : files) {
     if (Status s = WriteFileAtomically((base / name).string(), text); !s.ok()) return s;

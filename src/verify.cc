@@ -6,7 +6,7 @@
 #include <functional>
 
 #include "dynslam/graph_io.h"
-#include "dynslam/json.h"
+#include "src/json_io.h"
 
 namespace dynslam {
 namespace {
@@ -20,9 +20,11 @@ struct RoleDifference {
   VertexId worst_rotation_id = -1, worst_translation_id = -1;
 };
 
-double Number(const Json& json, std::initializer_list<const char*> path) {
-  const Json* node = json.FindPath(path);
-  return node != nullptr && node->is_number() ? node->number() : std::nan("");
+// A JSON file whose top level is an object (summary.json, metrics.json).
+Expected<JsonValue> ReadJsonObject(const std::string& path) {
+  Expected<JsonValue> json = ReadJsonFile(path);
+  if (json.ok() && !json->is_object()) return Error{path, 1, "expected a JSON object"};
+  return json;
 }
 
 std::string FormatId(VertexId id) { return id < 0 ? "-" : "vertex " + std::to_string(id); }
@@ -73,30 +75,30 @@ class Checker {
   VerifyReport* report_;
 };
 
-void CompareCosts(const Json& ours, const Json& reference, const VerifyTolerances& tol,
+void CompareCosts(const JsonValue& ours, const JsonValue& reference, const VerifyTolerances& tol,
                   Checker& checker) {
-  const double initial = Number(reference, {"initial_cost"});
-  checker.Relative("initial_cost", Number(ours, {"initial_cost"}), initial,
+  const double initial = NumberAt(reference, {"initial_cost"});
+  checker.Relative("initial_cost", NumberAt(ours, {"initial_cost"}), initial,
                    tol.initial_cost_relative, false, true);
-  checker.Relative("final_cost", Number(ours, {"final_cost"}), Number(reference, {"final_cost"}),
+  checker.Relative("final_cost", NumberAt(ours, {"final_cost"}), NumberAt(reference, {"final_cost"}),
                    tol.final_cost_relative, true, true);
   for (const EdgeKind kind : kAllEdgeKinds) {
     const char* name = EdgeKindName(kind);
-    const double ref_initial = Number(reference, {"cost_by_kind", "initial", name});
+    const double ref_initial = NumberAt(reference, {"cost_by_kind", "initial", name});
     if (std::isnan(ref_initial)) continue;
     checker.Relative(std::string("initial_cost.") + name,
-                     Number(ours, {"cost_by_kind", "initial", name}), ref_initial,
+                     NumberAt(ours, {"cost_by_kind", "initial", name}), ref_initial,
                      tol.initial_cost_relative, false, true, 1e-6 * std::abs(initial));
   }
   for (const EdgeKind kind : kAllEdgeKinds) {
     const char* name = EdgeKindName(kind);
-    const double ref_final = Number(reference, {"cost_by_kind", "final", name});
+    const double ref_final = NumberAt(reference, {"cost_by_kind", "final", name});
     if (std::isnan(ref_final) || ref_final == 0) continue;
     checker.Relative(std::string("final_cost.") + name,
-                     Number(ours, {"cost_by_kind", "final", name}), ref_final,
+                     NumberAt(ours, {"cost_by_kind", "final", name}), ref_final,
                      tol.final_cost_relative, false, false);
   }
-  checker.Absolute("iterations", Number(ours, {"iterations"}), Number(reference, {"iterations"}),
+  checker.Absolute("iterations", NumberAt(ours, {"iterations"}), NumberAt(reference, {"iterations"}),
                    INFINITY, false);
 }
 
@@ -159,23 +161,23 @@ Status CompareVariables(const Graph& ours, const Graph& reference, const VerifyT
 }
 
 // Every numeric leaf of the reference metrics: counts must be equal, means within tolerance.
-void CompareMetrics(const Json& ours, const Json& reference, const std::string& prefix,
+void CompareMetrics(const JsonValue& ours, const JsonValue& reference, const std::string& prefix,
                     const VerifyTolerances& tol, bool asserted, Checker& checker) {
-  for (const auto& [key, value] : reference.members()) {
+  for (const auto& [key, value] : reference.items()) {
     const std::string name = prefix.empty() ? key : prefix + "." + key;
+    const auto mine = ours.is_object() ? ours.find(key) : ours.end();
     if (value.is_object()) {
-      const Json* mine = ours.Find(key);
-      if (mine != nullptr) {
+      if (mine != ours.end()) {
         CompareMetrics(*mine, value, name, tol, asserted, checker);
       } else {
         checker.Bound("metrics." + name, NAN, 0, asserted, "missing from our metrics");
       }
     } else if (value.is_number()) {
-      const Json* mine = ours.Find(key);
-      const double our_value = mine != nullptr && mine->is_number() ? mine->number() : NAN;
+      const double our_value =
+          mine != ours.end() && mine->is_number() ? mine->get<double>() : NAN;
       const bool is_mean = key.rfind("mean_", 0) == 0;
-      checker.Absolute("metrics." + name, our_value, value.number(), is_mean ? tol.metric : 0,
-                       asserted);
+      checker.Absolute("metrics." + name, our_value, value.get<double>(),
+                       is_mean ? tol.metric : 0, asserted);
     }
   }
 }
@@ -185,9 +187,9 @@ void CompareMetrics(const Json& ours, const Json& reference, const std::string& 
 Expected<VerifyReport> Verify(const std::string& result_dir, const std::string& reference_dir,
                               const VerifyTolerances& tolerances) {
   const fs::path ours_dir(result_dir), ref_dir(reference_dir);
-  Expected<Json> ours = Json::ReadFile((ours_dir / "summary.json").string());
+  Expected<JsonValue> ours = ReadJsonObject((ours_dir / "summary.json").string());
   if (!ours.ok()) return ours.error();
-  Expected<Json> reference = Json::ReadFile((ref_dir / "summary.json").string());
+  Expected<JsonValue> reference = ReadJsonObject((ref_dir / "summary.json").string());
   if (!reference.ok()) return reference.error();
 
   VerifyReport report;
@@ -208,21 +210,18 @@ Expected<VerifyReport> Verify(const std::string& result_dir, const std::string& 
 
   const fs::path ref_metrics = ref_dir / "metrics.json";
   if (fs::exists(ref_metrics)) {
-    Expected<Json> metrics = Json::ReadFile(ref_metrics.string());
+    Expected<JsonValue> metrics = ReadJsonObject(ref_metrics.string());
     if (!metrics.ok()) return metrics.error();
-    const Json* our_metrics = ours->Find("metrics");
-    const Json empty = Json::Object();
-    const Json* object_centric = metrics->Find("object_centric");
+    const auto our_metrics = ours->find("metrics");
+    const auto object_centric_entry = metrics->find("object_centric");
+    const bool object_centric = object_centric_entry != metrics->end() &&
+                                *object_centric_entry == true;
     for (const char* family : {"camera", "object_motion", "object_pose"}) {
-      const Json* node = metrics->Find(family);
-      if (node == nullptr) continue;
+      if (!metrics->contains(family)) continue;
       // Object-centric pose metrics follow the object poses, which are reported only (above).
-      const bool asserted = std::string(family) != "object_pose" || object_centric == nullptr ||
-                            !object_centric->boolean();
-      Json reference_family = Json::Object();
-      reference_family.Set(family, *node);
-      CompareMetrics(our_metrics ? *our_metrics : empty, reference_family, "", tolerances,
-                     asserted, checker);
+      const bool asserted = std::string(family) != "object_pose" || !object_centric;
+      CompareMetrics(our_metrics != ours->end() ? *our_metrics : JsonValue::object(),
+                     JsonValue{{family, (*metrics)[family]}}, "", tolerances, asserted, checker);
     }
   }
   return report;

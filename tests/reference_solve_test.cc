@@ -11,7 +11,6 @@
 
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
-#include "dynslam/json.h"
 #include "dynslam/metrics.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
@@ -25,9 +24,8 @@ namespace fs = std::filesystem;
 using testing::ReferenceGraph;
 
 double Number(const std::string& summary_path, std::initializer_list<const char*> path) {
-  Expected<Json> summary = Json::ReadFile(summary_path);
-  const Json* node = summary.ok() ? summary->FindPath(path) : nullptr;
-  return node != nullptr ? node->number() : std::nan("");
+  Expected<JsonValue> summary = ReadJsonFile(summary_path);
+  return summary.ok() ? NumberAt(*summary, path) : std::nan("");
 }
 
 class ReferenceSolveTest : public ::testing::TestWithParam<ReferenceGraph> {};
@@ -50,7 +48,7 @@ TEST_P(ReferenceSolveTest, ReachesTheOptimumAndMatchesTightExact) {
   if (fs::exists(gt_path)) {
     Expected<GroundTruth> gt = ReadGroundTruth(gt_path.string());
     ASSERT_TRUE(gt.ok()) << gt.error().ToString();
-    outputs.metrics = MetricsJson(ComputeMetrics(*graph, *gt));
+    outputs.metrics = ComputeMetrics(*graph, *gt);
   }
   const fs::path out_dir =
       fs::temp_directory_path() / ("dynslam_reference_" + reference.TestName());

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "dynslam/graph.h"
-#include "dynslam/json.h"
+#include "src/json_io.h"
 #include "dynslam/se3.h"
 
 namespace dynslam::testing {

@@ -11,7 +11,6 @@
 
 #include "dynslam/graph.h"
 #include "dynslam/ground_truth.h"
-#include "dynslam/json.h"
 
 namespace dynslam {
 
@@ -50,8 +49,8 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& ground_truth);
 std::map<std::pair<int64_t, int64_t>, Pose> EstimatedObjectPoses(const Graph& solved,
                                                                  const GroundTruth& ground_truth);
 
-// The shape of the reference metrics.json (SPEC §5).
-Json MetricsJson(const Metrics& metrics);
+// The metrics as the reference set's metrics.json writes them (SPEC §5), as JSON text.
+std::string MetricsJson(const Metrics& metrics);
 
 }  // namespace dynslam
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "dynslam/graph.h"
-#include "dynslam/json.h"
+#include "dynslam/metrics.h"
 #include "dynslam/pose.h"
 #include "dynslam/solver.h"
 #include "dynslam/status.h"
@@ -30,7 +30,7 @@ struct SolveOutputs {
   // object_poses.csv rows: the L variables of an object-centric graph, or the poses composed
   // from motions and ground truth for a world-centric one (SPEC §4, §5). Empty: header only.
   std::vector<ObjectPoseRow> object_poses;
-  std::optional<Json> metrics;          // SPEC §5, when ground truth was given
+  std::optional<Metrics> metrics;       // SPEC §5, when ground truth was given
   std::vector<std::string> warnings;    // reading/building warnings to keep in the summary
 };
 
@@ -41,7 +41,8 @@ std::string FormulationOf(const Graph& graph, std::string* source);
 // The object poses L of an object-centric graph, by (object, frame).
 std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph);
 
-Json SummaryJson(const SolveOutputs& outputs);
+// summary.json's text (SPEC §4), without the trailing newline.
+std::string SummaryJson(const SolveOutputs& outputs);
 
 // Writes all files of SPEC §4 into `dir` (created when missing).
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);

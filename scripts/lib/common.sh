@@ -9,8 +9,8 @@ DYNSLAM_JOBS="${DYNSLAM_JOBS:-2}"
 DYNSLAM_PACKAGES=(
   cmake g++ make
   libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-serial libgoogle-glog-dev libgflags-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-matplotlib
+  libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
+  python3 python3-matplotlib locales
 )
 
 log() { printf '[%s] %s\n' "$(basename "$0")" "$*" >&2; }
