@@ -20,6 +20,7 @@
 #include "build_flags.h"
 #include "cli.h"
 #include "compat_flags.h"
+#include "export_flags.h"
 #include "commands.h"
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
@@ -277,6 +278,7 @@ void DrawPlots(const std::string& out_dir, const std::vector<Row>& rows, const s
 std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulation,
                                     const BuildOptions& build_options,
                                     const SolverOptions& solver_options, const CompatFlags& compat,
+                                    const ExportFlags& export_flags,
                                     const GroundTruth* gt, const fs::path& out_dir,
                                     const std::string& front_end_name, int* exit_code) {
   const char* name = FormulationName(formulation);
@@ -315,6 +317,8 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   outputs.solved = &*graph;
   outputs.report = &row.report;
   outputs.warnings = build_report.warnings;
+  outputs.ground_truth = gt;
+  export_flags.Apply(&outputs);
   if (gt) {
     row.metrics = ComputeMetrics(*graph, *gt);
     outputs.metrics = row.metrics;
@@ -370,7 +374,12 @@ int RunCompare(int argc, char** argv) {
   BuildFlags build_flags(&parser);
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
+  ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
+  if (std::optional<std::string> problem = export_flags.Finish()) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
   if (std::optional<std::string> problem = compat.Finish()) {
     std::cerr << "error: " << *problem << "\n";
     return kExitBadInput;
@@ -429,7 +438,8 @@ int RunCompare(int argc, char** argv) {
     int exit_code = kExitOk;
     std::optional<Row> row =
         SolveFormulation(*front_end, formulation, build_options, solver_options, compat,
-                         gt ? &*gt : nullptr, fs::path(out_dir), name, &exit_code);
+                         export_flags, gt ? &*gt : nullptr, fs::path(out_dir), name,
+                         &exit_code);
     if (!row) return exit_code;
     rows.push_back(std::move(*row));
     if (StopSignal() != 0) {

@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "compat_flags.h"
+#include "export_flags.h"
 #include "commands.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
@@ -73,8 +74,13 @@ int RunSolve(int argc, char** argv) {
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
+  ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   if (std::optional<std::string> problem = compat.Finish()) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
+  if (std::optional<std::string> problem = export_flags.Finish()) {
     std::cerr << "error: " << *problem << "\n";
     return kExitBadInput;
   }
@@ -132,7 +138,9 @@ int RunSolve(int argc, char** argv) {
   }
   outputs.solved = &*graph;
   outputs.report = &*report;
+  export_flags.Apply(&outputs);
   if (ground_truth) {
+    outputs.ground_truth = &*ground_truth;
     outputs.metrics = ComputeMetrics(*graph, *ground_truth);
     for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *ground_truth)) {
       outputs.object_poses.push_back({key.first, key.second, pose});

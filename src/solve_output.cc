@@ -214,6 +214,14 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
       {"summary.json", SummaryJson(outputs) + "\n"},
   };
+  const std::vector<Trajectory> trajectories =
+      outputs.export_formats.empty() ? std::vector<Trajectory>{}
+                                     : ExportedTrajectories(graph, outputs.ground_truth);
+  for (const TrajectoryFormat format : outputs.export_formats) {
+    if (Status s = WriteTrajectories(dir, trajectories, format, outputs.export_rate_hz); !s.ok()) {
+      return s;
+    }
+  }
   for (const auto& [name, text] : files) {
     if (Status s = WriteFileAtomically((base / name).string(), text); !s.ok()) return s;
   }

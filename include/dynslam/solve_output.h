@@ -14,6 +14,7 @@
 #include "dynslam/pose.h"
 #include "dynslam/solver.h"
 #include "dynslam/status.h"
+#include "dynslam/trajectory_export.h"
 
 namespace dynslam {
 
@@ -32,6 +33,10 @@ struct SolveOutputs {
   std::vector<ObjectPoseRow> object_poses;
   std::optional<Metrics> metrics;       // SPEC §5, when ground truth was given
   std::vector<std::string> warnings;    // reading/building warnings to keep in the summary
+  // Trajectory files for evo (trajectory_export.h), with the true ones when ground_truth is set.
+  std::vector<TrajectoryFormat> export_formats;
+  double export_rate_hz = 10;  // KITTI Tracking's frame rate
+  const GroundTruth* ground_truth = nullptr;
 };
 
 // "wc", "oc_b", … from LABEL_FORMULATION; otherwise inferred from the edges ("pose_graph" when
@@ -44,7 +49,8 @@ std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph);
 // summary.json's text (SPEC §4), without the trailing newline.
 std::string SummaryJson(const SolveOutputs& outputs);
 
-// Writes all files of SPEC §4 into `dir` (created when missing).
+// Writes all files of SPEC §4 into `dir` (created when missing), and the requested trajectory
+// files; summary.json last.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 
 }  // namespace dynslam
