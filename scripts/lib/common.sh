@@ -11,6 +11,7 @@ DYNSLAM_PACKAGES=(
   libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-serial libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
   python3 python3-matplotlib locales
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 log() { printf '[%s] %s\n' "$(basename "$0")" "$*" >&2; }

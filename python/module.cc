@@ -1,0 +1,281 @@
+// The Python module dynslam._dynslam (python/dynslam/__init__.py re-exports it): graph files,
+// formulations, the solver, metrics and the simulator, with poses and points as NumPy arrays
+// and errors as dynslam.Error carrying the file and line. Thin over the library: every number
+// comes from the same code as the command line.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dynslam/formulation.h"
+#include "dynslam/graph_io.h"
+#include "dynslam/ground_truth.h"
+#include "dynslam/kitti.h"
+#include "dynslam/metrics.h"
+#include "dynslam/simulate.h"
+#include "dynslam/solve_output.h"
+#include "dynslam/solver.h"
+#include "options.h"
+
+namespace py = pybind11;
+
+namespace dynslam::python {
+namespace {
+
+// A library Error on its way to Python's dynslam.Error.
+struct ErrorException {
+  Error error;
+};
+
+template <typename T>
+T Unwrap(Expected<T> expected) {
+  if (!expected.ok()) throw ErrorException{expected.error()};
+  return std::move(expected).value();
+}
+
+Role ParseRole(const std::string& name) {
+  for (const Role role : kAllRoles) {
+    if (name == RoleName(role)) return role;
+  }
+  throw py::value_error("unknown role '" + name + "' (camera, static_point, dynamic_point, "
+                        "motion, object_pose, object_point)");
+}
+
+// A pose as [tx ty tz qx qy qz qw], the order of the CSV and TUM outputs.
+void CopyPose(const Pose& pose, double* row) {
+  for (int i = 0; i < 7; ++i) row[i] = pose.data[(i + 4) % 7];
+}
+
+// The vertices of one role: ids, labels and values as arrays ("value": n×7 poses, n×3 points).
+py::dict Vertices(const Graph& graph, const std::string& role_name) {
+  const Role role = ParseRole(role_name);
+  std::vector<const Vertex*> selected;
+  std::vector<int64_t> ids;
+  for (const auto& [id, vertex] : graph.vertices) {
+    if (vertex.label.role != role) continue;
+    selected.push_back(&vertex);
+    ids.push_back(id);
+  }
+  const py::ssize_t n = static_cast<py::ssize_t>(selected.size());
+  const bool points = role == Role::kStaticPoint || role == Role::kDynamicPoint ||
+                      role == Role::kObjectPoint;
+  py::array_t<double> values({n, py::ssize_t{points ? 3 : 7}});
+  py::array_t<int64_t> object(n), frame(n), tracklet(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const Vertex& v = *selected[i];
+    double* row = values.mutable_data(i, 0);
+    if (points) {
+      for (int k = 0; k < 3; ++k) row[k] = v.value[k];
+    } else {
+      CopyPose(v.pose(), row);
+    }
+    object.mutable_at(i) = v.label.object;
+    frame.mutable_at(i) = v.label.frame;
+    tracklet.mutable_at(i) = v.label.tracklet;
+  }
+  py::dict out;
+  out["id"] = py::array_t<int64_t>(n, ids.data());
+  out["object"] = object;
+  out["frame"] = frame;
+  out["tracklet"] = tracklet;
+  out["value"] = values;
+  return out;
+}
+
+py::dict EdgesByKind(const Graph& graph) {
+  py::dict out;
+  const auto counts = CountEdgesByKind(graph);
+  for (const EdgeKind kind : kAllEdgeKinds) out[EdgeKindName(kind)] = counts[static_cast<int>(kind)];
+  return out;
+}
+
+py::object ParseJsonText(const std::string& text) {
+  return py::module_::import("json").attr("loads")(text);
+}
+
+// Ctrl-C during a solve: the solve stops after its step and returns what it reached
+// (termination "interrupted"); Python's KeyboardInterrupt is raised only when the solve is over.
+SolveReport SolveReleasingTheGil(SolverOptions options, Graph* graph) {
+  bool interrupted = false;
+  options.should_stop = [&interrupted] {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      PyErr_Clear();
+      interrupted = true;
+    }
+    return interrupted;
+  };
+  Expected<SolveReport> report = [&] {
+    py::gil_scoped_release release;
+    return Solve(options, graph);
+  }();
+  if (interrupted) {
+    PyErr_WarnEx(PyExc_RuntimeWarning, "dynslam.solve: interrupted; returning the last accepted "
+                 "state (termination 'interrupted')", 1);
+  }
+  return Unwrap(std::move(report));
+}
+
+struct PySolveReport {
+  SolveReport report;
+  Graph graph;  // at the solution
+
+  py::dict Convergence() const {
+    const py::ssize_t n = static_cast<py::ssize_t>(report.convergence.size());
+    py::array_t<int64_t> step(n), iteration(n);
+    py::array_t<double> lambda(n), cost(n), trial_cost(n), time_s(n);
+    py::array_t<bool> accepted(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const StepRecord& r = report.convergence[i];
+      step.mutable_at(i) = r.step;
+      iteration.mutable_at(i) = r.iteration;
+      lambda.mutable_at(i) = r.lambda;
+      cost.mutable_at(i) = r.cost;
+      trial_cost.mutable_at(i) = r.trial_cost;
+      accepted.mutable_at(i) = r.accepted;
+      time_s.mutable_at(i) = r.time_s;
+    }
+    py::dict out;
+    out["step"] = step;
+    out["iteration"] = iteration;
+    out["lambda"] = lambda;
+    out["cost"] = cost;
+    out["trial_cost"] = trial_cost;
+    out["accepted"] = accepted;
+    out["time_s"] = time_s;
+    return out;
+  }
+
+  // summary.json's contents (SPEC §4), without metrics.
+  py::object Summary(const std::string& input) const {
+    SolveOutputs outputs;
+    outputs.input = input;
+    outputs.solved = &graph;
+    outputs.report = &report;
+    return ParseJsonText(SummaryJson(outputs));
+  }
+};
+
+GroundTruth AsGroundTruth(const py::object& gt) {
+  if (py::isinstance<py::str>(gt)) return Unwrap(ReadGroundTruth(gt.cast<std::string>()));
+  return gt.cast<GroundTruth>();
+}
+
+std::pair<Graph, GroundTruth> SimulateScene(const py::object& kitti_dir,
+                                            const py::object& sequence, bool synthetic,
+                                            const py::kwargs& kwargs) {
+  SimulateOptions options = ToSimulateOptions(kwargs);
+  options.synthetic = synthetic;
+  Scene scene;
+  if (synthetic) {
+    scene = MakeSyntheticScene(options);
+  } else {
+    if (kitti_dir.is_none() || sequence.is_none()) {
+      throw py::value_error("simulate: kitti_dir and sequence are required unless synthetic=True");
+    }
+    const KittiSequence data = Unwrap(
+        ReadKittiSequence(kitti_dir.cast<std::string>(), sequence.cast<std::string>()));
+    scene = Unwrap(MakeKittiScene(data, options));
+  }
+  SimulatedScene simulated = Unwrap(Simulate(scene, options));
+  return {std::move(simulated.graph), std::move(simulated.ground_truth)};
+}
+
+void DefineErrors(py::module_& m) {
+  static py::exception<ErrorException> error_type(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const ErrorException& e) {
+      py::object instance =
+          py::reinterpret_borrow<py::object>(error_type.ptr())(e.error.ToString());
+      instance.attr("file") = e.error.file;
+      instance.attr("line") = e.error.line;
+      PyErr_SetObject(error_type.ptr(), instance.ptr());
+    }
+  });
+}
+
+void DefineTypes(py::module_& m) {
+  py::class_<Graph>(m, "Graph", "A graph file in memory (SPEC §1): vertices, edges, labels.")
+      .def_property_readonly("num_vertices", [](const Graph& g) { return g.vertices.size(); })
+      .def_property_readonly("num_edges", &Graph::NumEdges)
+      .def_property_readonly("formulation", [](const Graph& g) { return g.formulation; })
+      .def_property_readonly("edges_by_kind", EdgesByKind)
+      .def("vertices", Vertices, py::arg("role"),
+           "ids, object, frame, tracklet (int64 arrays) and value (n×7 poses [tx ty tz qx qy qz "
+           "qw] or n×3 points) of the vertices with this role")
+      .def("__repr__", [](const Graph& g) {
+        return "<dynslam.Graph " + std::to_string(g.vertices.size()) + " vertices, " +
+               std::to_string(g.NumEdges()) + " edges>";
+      });
+  py::class_<GroundTruth>(m, "GroundTruth", "A ground-truth file (SPEC §2).")
+      .def_property_readonly("num_cameras", [](const GroundTruth& g) { return g.cameras.size(); })
+      .def_property_readonly("num_object_poses",
+                             [](const GroundTruth& g) { return g.objects.size(); });
+  py::class_<PySolveReport>(m, "SolveReport", "What a solve reached and how (SPEC §4).")
+      .def_property_readonly("graph", [](const PySolveReport& r) { return r.graph; },
+                             "the graph at the solution")
+      .def_property_readonly("initial_cost", [](const PySolveReport& r) { return r.report.initial_cost; })
+      .def_property_readonly("final_cost", [](const PySolveReport& r) { return r.report.final_cost; })
+      .def_property_readonly("steps", [](const PySolveReport& r) { return r.report.steps; })
+      .def_property_readonly("iterations", [](const PySolveReport& r) { return r.report.iterations; })
+      .def_property_readonly("termination", [](const PySolveReport& r) { return r.report.termination; })
+      .def_property_readonly("usable", [](const PySolveReport& r) { return r.report.usable; })
+      .def_property_readonly("convergence", &PySolveReport::Convergence,
+                             "convergence.csv's columns as arrays (SPEC §4)")
+      .def("summary", &PySolveReport::Summary, py::arg("input") = "",
+           "summary.json's contents as a dict (SPEC §4)");
+}
+
+void DefineFunctions(py::module_& m) {
+  m.def("read_graph", [](const std::string& path, bool skip_unknown_tags, bool repair_information) {
+    ReadOptions options;
+    options.skip_unknown_tags = skip_unknown_tags;
+    options.repair_information = repair_information;
+    return Unwrap(ReadGraph(path, options));
+  }, py::arg("path"), py::arg("skip_unknown_tags") = false, py::arg("repair_information") = false);
+  m.def("write_graph", [](const Graph& graph, const std::string& path) {
+    if (Status s = WriteGraph(graph, path); !s.ok()) throw ErrorException{s.error()};
+  }, py::arg("graph"), py::arg("path"));
+  m.def("read_ground_truth", [](const std::string& path) { return Unwrap(ReadGroundTruth(path)); },
+        py::arg("path"));
+  m.def("build", [](const Graph& front_end, const std::string& formulation, const py::object& gt,
+                    const py::kwargs& options) {
+    Formulation f;
+    if (!ParseFormulation(formulation, &f)) {
+      throw py::value_error("unknown formulation '" + formulation + "' (wc, oc_a, oc_b, oc_c)");
+    }
+    const std::optional<GroundTruth> truth =
+        gt.is_none() ? std::nullopt : std::optional<GroundTruth>(AsGroundTruth(gt));
+    BuildReport report;
+    return Unwrap(BuildFormulation(front_end, f, ToBuildOptions(options),
+                                   truth ? &*truth : nullptr, &report));
+  }, py::arg("frontend"), py::arg("formulation"), py::arg("gt") = py::none(),
+     "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path");
+  m.def("solve", [](const Graph& graph, const py::kwargs& options) {
+    PySolveReport out{SolveReport{}, graph};
+    out.report = SolveReleasingTheGil(ToSolverOptions(options), &out.graph);
+    return out;
+  }, py::arg("graph"), "solve a copy of the graph; options are SolverOptions's fields");
+  m.def("metrics", [](const Graph& graph, const py::object& gt) {
+    return ParseJsonText(MetricsJson(ComputeMetrics(graph, AsGroundTruth(gt))));
+  }, py::arg("graph"), py::arg("gt"), "SPEC §5 metrics as a dict shaped like metrics.json");
+  m.def("simulate", SimulateScene, py::arg("kitti_dir") = py::none(),
+        py::arg("sequence") = py::none(), py::arg("synthetic") = false,
+        "a simulated front end and its ground truth (docs/SIMULATOR.md); options are "
+        "SimulateOptions's fields");
+}
+
+}  // namespace
+}  // namespace dynslam::python
+
+PYBIND11_MODULE(_dynslam, m) {
+  m.doc() = "dynslam: Dynamic SLAM back ends on Ceres Solver";
+  dynslam::python::DefineErrors(m);
+  dynslam::python::DefineTypes(m);
+  dynslam::python::DefineFunctions(m);
+}

@@ -1,0 +1,118 @@
+"""The Python module against the command line and the files it writes (run by ctest as
+`python`; needs PYTHONPATH=<build>/python and DYNSLAM_CLI=<the dynslam binary>)."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import dynslam
+
+ROOT = os.path.join(os.path.dirname(__file__), "..", "..")
+SCENE = os.path.join(ROOT, "data", "reference", "synthetic")
+GT = os.path.join(SCENE, "gt.txt")
+
+
+def graph_path(formulation):
+    return os.path.join(SCENE, "graphs", formulation + ".g2o")
+
+
+@pytest.fixture(scope="module")
+def cli_solve(tmp_path_factory):
+    """`dynslam solve` of the synthetic oc_b graph with ground truth: its summary.json."""
+    out = tmp_path_factory.mktemp("cli") / "oc_b"
+    subprocess.run([os.environ["DYNSLAM_CLI"], "solve", graph_path("oc_b"), "--gt", GT,
+                    "--out", str(out)], check=True, capture_output=True)
+    with open(out / "summary.json") as f:
+        return json.load(f)
+
+
+def test_read_write_round_trip(tmp_path):
+    graph = dynslam.read_graph(graph_path("wc"))
+    dynslam.write_graph(graph, str(tmp_path / "copy.g2o"))
+    again = dynslam.read_graph(str(tmp_path / "copy.g2o"))
+    assert (again.num_vertices, again.num_edges) == (graph.num_vertices, graph.num_edges)
+    assert again.edges_by_kind == graph.edges_by_kind
+    for role in ("camera", "dynamic_point", "motion"):
+        a, b = graph.vertices(role), again.vertices(role)
+        assert np.array_equal(a["id"], b["id"])
+        assert np.array_equal(a["value"], b["value"])  # bit-exact (SPEC §1)
+
+
+def test_numpy_shapes():
+    graph = dynslam.read_graph(graph_path("oc_b"))
+    cameras = graph.vertices("camera")
+    assert cameras["value"].shape == (len(cameras["id"]), 7) and cameras["value"].dtype == np.float64
+    assert cameras["id"].dtype == np.int64
+    points = graph.vertices("object_point")
+    assert points["value"].shape == (len(points["id"]), 3)
+    assert np.allclose(np.linalg.norm(cameras["value"][:, 3:], axis=1), 1)  # unit quaternions
+    report = dynslam.solve(graph, max_iterations=3)
+    columns = report.convergence
+    assert set(columns) == {"step", "iteration", "lambda", "cost", "trial_cost", "accepted",
+                            "time_s"}
+    assert columns["cost"].shape == (report.steps,) and columns["accepted"].dtype == np.bool_
+
+
+def test_build_matches_the_reference_graph_counts():
+    frontend = dynslam.read_graph(os.path.join(SCENE, "frontend.g2o"))
+    built = dynslam.build(frontend, "oc_b", GT, object_init="align")
+    reference = dynslam.read_graph(graph_path("oc_b"))
+    assert built.edges_by_kind == reference.edges_by_kind
+    assert built.num_vertices == reference.num_vertices
+    assert built.formulation == "oc_b"
+
+
+def test_solve_reaches_the_cli_final_cost(cli_solve):
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")))
+    assert report.usable and report.termination == cli_solve["termination"]
+    assert report.steps == cli_solve["steps"]
+    assert report.final_cost == pytest.approx(cli_solve["final_cost"], rel=1e-12)
+
+
+def test_metrics_equal_the_summary(cli_solve):
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")))
+    ours = dynslam.metrics(report.graph, GT)
+    assert ours.keys() == cli_solve["metrics"].keys()
+    for family in ("camera", "object_motion", "object_pose"):
+        for key, value in cli_solve["metrics"][family].items():
+            if isinstance(value, float):
+                assert ours[family][key] == pytest.approx(value, rel=1e-9, abs=1e-12)
+            elif not isinstance(value, dict):
+                assert ours[family][key] == value
+
+
+def test_errors_carry_file_and_line(tmp_path):
+    bad = tmp_path / "bad.g2o"
+    bad.write_text("VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_TRACKXYZ 1 0 zero 0\n")
+    with pytest.raises(dynslam.Error) as raised:
+        dynslam.read_graph(str(bad))
+    assert raised.value.file == str(bad) and raised.value.line == 2
+    assert "field 3 'zero' is not a number" in str(raised.value)
+    with pytest.raises(TypeError):
+        dynslam.solve(dynslam.read_graph(graph_path("wc")), no_such_option=1)
+    with pytest.raises(ValueError):
+        dynslam.solve(dynslam.read_graph(graph_path("wc")), minimizer="newton")
+
+
+def test_simulate_and_compare():
+    frontend, gt = dynslam.simulate(synthetic=True, synthetic_frames=12, seed=1)
+    results = dynslam.compare(frontend, gt, formulations=("wc", "oc_c"), max_iterations=50)
+    assert set(results) == {"wc", "oc_c"}
+    for result in results.values():
+        assert result["report"].usable
+        assert result["metrics"]["camera"]["pairs"] == 11
+    without_truth = dynslam.compare(frontend, formulations=("wc",), max_iterations=5)
+    assert without_truth["wc"]["metrics"] is None
+
+
+def test_example_compares_and_plots(tmp_path):
+    example = os.path.join(ROOT, "examples", "compare_formulations.py")
+    out = tmp_path / "convergence.png"
+    result = subprocess.run(["/usr/bin/python3", example, "--frames", "20", "--out", str(out)],
+                            capture_output=True, text=True, env=dict(os.environ))
+    assert result.returncode == 0, result.stderr
+    assert out.stat().st_size > 1000
+    for name in dynslam.FORMULATIONS:
+        assert name in result.stdout
