@@ -16,7 +16,9 @@ CompatFlags::CompatFlags(ArgParser* parser) {
                     "the released code's choices (SPEC §7): dsc for all, or item numbers such as "
                     "1,3: 1 information unpermuted, 2 motion edge σ=0.1 Huber 1e-6 as m_prev-H⁻¹m_curr, "
                     "3 wc point edges Huber 1e-5, 4 identity initial motions, 5 object-centric "
-                    "noise and first poses, 6 object motion residual without -m_L",
+                    "noise and first poses, 6 object motion residual without -m_L, 7 GTSAM LM "
+                    "with the released stopping rule, 8 later object poses at their points' "
+                    "centroid",
                     "none|dsc|LIST");
 }
 
@@ -29,8 +31,8 @@ std::optional<std::string> CompatFlags::Finish() {
   }
   std::stringstream list(text_);
   for (std::string item; std::getline(list, item, ',');) {
-    if (item.size() != 1 || item[0] < '1' || item[0] > '6') {
-      return "--compat: '" + item + "' is not dsc, none or an item number 1 to 6";
+    if (item.size() != 1 || item[0] < '1' || item[0] > '8') {
+      return "--compat: '" + item + "' is not dsc, none or an item number 1 to 8";
     }
     item_[static_cast<size_t>(item[0] - '0')] = true;
   }
@@ -59,6 +61,7 @@ void CompatFlags::Apply(ReadOptions* options) const {
 void CompatFlags::Apply(BuildOptions* options) const {
   if (item_[4]) options->motion_init = MotionInit::kIdentity;
   options->dsc_object_centric_noise = item_[5];
+  if (item_[8]) options->object_init = ObjectInit::kCentroid;
 }
 
 void CompatFlags::Apply(bool world_centric, SolverOptions* options) const {
@@ -72,6 +75,7 @@ void CompatFlags::Apply(bool world_centric, SolverOptions* options) const {
   }
   if (item_[5]) Huber(options, EdgeKind::kObjectMotion, 1e-3);
   options->dsc_object_motion_residual = item_[6];
+  options->dsc_released_lm = item_[7];
 }
 
 }  // namespace dynslam::cli

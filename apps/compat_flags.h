@@ -30,7 +30,7 @@ class CompatFlags {
 
  private:
   std::string text_ = "none";
-  std::array<bool, 7> item_{};  // items 1–6 of SPEC §7
+  std::array<bool, 9> item_{};  // items 1–8 of SPEC §7
 };
 
 }  // namespace dynslam::cli

@@ -421,11 +421,11 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
   for (int64_t k = segment.first; k <= segment.last; ++k) {
     Pose pose;
     const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
-    if (rule == ObjectInit::kCentroid) {
-      pose = centroid(k);
-    } else if (k == segment.first && options_.dsc_object_centric_noise && l_gt != nullptr) {
+    if (k == segment.first && options_.dsc_object_centric_noise && l_gt != nullptr) {
       pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), l_gt->translation());
       ++initialised_from_gt_;
+    } else if (rule == ObjectInit::kCentroid) {
+      pose = centroid(k);
     } else if (k == segment.first) {
       if (!from_truth(k, &pose)) pose = centroid(k);
     } else if (rule == ObjectInit::kTruth) {

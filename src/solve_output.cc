@@ -114,6 +114,7 @@ JsonValue SolverJson(const SolverOptions& options) {
       {"nonmonotonic_steps", options.nonmonotonic_steps},
       {"fix_first", options.fix_first},
       {"eliminate_object_points", options.eliminate_object_points},
+      {"released_lm", options.dsc_released_lm},
       {"object_point_variables", options.world_anchored_object_points ? "world" : "object"},
       {"kinematic_residual_frame", options.world_frame_kinematic_residual ? "world" : "object"},
       {"robust_kernels", std::move(kernels)}};

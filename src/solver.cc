@@ -30,6 +30,10 @@ namespace dynslam {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): relative and absolute error
+// tolerances, and the λ at which it gives up.
+constexpr double kReleasedTolerance = 1e-5;
+constexpr double kReleasedMaxLambda = 1e5;
 
 struct NamedEnum {
   const char* name;
@@ -412,6 +416,13 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
   o.gradient_tolerance = options.gradient_tolerance;
   o.parameter_tolerance = options.parameter_tolerance;
   o.initial_trust_region_radius = 1.0 / options.initial_lambda;
+  if (options.dsc_released_lm) {
+    o.jacobi_scaling = false;
+    o.min_lm_diagonal = 1;
+    o.max_lm_diagonal = 1;
+    o.min_trust_region_radius = 1.0 / kReleasedMaxLambda;
+    o.max_num_iterations = std::numeric_limits<int>::max();  // the recorder counts accepted steps
+  }
   o.use_nonmonotonic_steps = options.nonmonotonic_steps > 0;
   if (o.use_nonmonotonic_steps) o.max_consecutive_nonmonotonic_steps = options.nonmonotonic_steps;
   o.logging_type = ceres::SILENT;
@@ -462,26 +473,39 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   }
 
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
-  // "interrupted" or "time_limit" once a stop was asked for, else empty.
+  // The termination the recorder ended the solve with ("interrupted", "time_limit", or, under
+  // the released rule, "convergence" or "no_convergence"), else empty; and why.
   const std::string& stop_reason() const { return stop_reason_; }
+  const std::string& stop_detail() const { return stop_detail_; }
 
  private:
   // Ceres keeps the last accepted state when a callback ends the solve (USER_SUCCESS).
   bool StopRequested() {
+    const int steps = static_cast<int>(rows_.size());
     if (options_.should_stop && options_.should_stop()) {
-      stop_reason_ = "interrupted";
+      Stop("interrupted", "stopped on request after " + std::to_string(steps) + " steps");
     } else if (options_.max_time_s > 0 &&
                std::chrono::duration<double>(Clock::now() - start_).count() >= options_.max_time_s) {
-      stop_reason_ = "time_limit";
+      Stop("time_limit", "time limit reached after " + std::to_string(steps) + " steps");
+    } else if (options_.dsc_released_lm && !rows_.empty() && rows_.back().accepted) {
+      if (rows_.back().cost - rows_.back().trial_cost <= kReleasedTolerance) {
+        Stop("convergence", "released rule: an accepted step lowered the cost by <= 1e-5");
+      } else if (accepted_ >= options_.max_iterations) {
+        Stop("no_convergence", "released rule: " + std::to_string(accepted_) + " iterations");
+      }
     }
     return !stop_reason_.empty();
+  }
+  void Stop(const char* reason, std::string detail) {
+    stop_reason_ = reason;
+    stop_detail_ = std::move(detail);
   }
 
   const SolverOptions& options_;
   const Assembly* assembly_;
   Graph* scratch_;
   const Clock::time_point start_;
-  std::string stop_reason_;
+  std::string stop_reason_, stop_detail_;
   std::vector<StepRecord> rows_;
   double accepted_cost_ = 0;
   double radius_ = 1;
@@ -552,6 +576,15 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
                                   : SparseBackend::kEigen;
   }
   if (resolved.initial_lambda == 0) resolved.initial_lambda = has_points ? 1e-6 : 1e-10;
+  if (resolved.dsc_released_lm) {  // SPEC §6 `released`
+    resolved.minimizer = MinimizerType::kLevenbergMarquardt;
+    resolved.initial_lambda = 1e-5;
+    resolved.function_tolerance = kReleasedTolerance;
+    resolved.gradient_tolerance = 0;
+    resolved.parameter_tolerance = 0;
+    resolved.max_iterations = 100;
+    resolved.nonmonotonic_steps = 0;
+  }
   // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
   if (resolved.nonmonotonic_steps == -1) {
@@ -682,9 +715,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
     case ceres::USER_SUCCESS:
       report.termination = recorder.stop_reason();
       report.termination_detail =
-          (recorder.stop_reason() == "interrupted" ? "stopped on request after "
-                                                   : "time limit reached after ") +
-          std::to_string(report.steps) + " steps; the solution is the last accepted state";
+          recorder.stop_detail() + "; the solution is the last accepted state";
       break;
     default: report.termination = "failure"; break;
   }

@@ -338,6 +338,31 @@ TEST_F(ObjectCentricChartTest, TimeLimitIsItsOwnTermination) {
   EXPECT_FALSE(Solve(options, &graph).ok());
 }
 
+// SPEC §7 item 7: the released code's LM stops when an accepted step lowers the cost by at most
+// 1e-5 (relative or absolute) or after 100 accepted steps, with LM whatever the graph.
+TEST_F(ObjectCentricChartTest, ReleasedRuleStopsOnTheFirstSmallDecrease) {
+  SolverOptions options;
+  options.dsc_released_lm = true;
+  Graph graph = graph_;
+  Expected<SolveReport> report = Solve(options, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
+  EXPECT_EQ(report->options_used.initial_lambda, 1e-5);
+  EXPECT_LE(report->iterations, 100);
+  ASSERT_GE(report->iterations, 2);
+  // The rule: stop at the first step whose |cost change| ≤ 1e-5 · cost (Ceres's function
+  // tolerance, which ends the solve before it records that trial step), or that is accepted with
+  // a decrease ≤ 1e-5 (the last row), or after 100 accepted steps, or once λ ≥ 1e5.
+  const std::vector<StepRecord>& rows = report->convergence;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const double change = rows[i].cost - rows[i].trial_cost;
+    EXPECT_GT(std::abs(change), 1e-5 * rows[i].cost) << "step " << i + 1;
+    if (rows[i].accepted && i + 1 < rows.size()) EXPECT_GT(change, 1e-5) << "step " << i + 1;
+  }
+  EXPECT_EQ(report->termination, "convergence") << report->termination_detail;
+  EXPECT_TRUE(report->usable);
+}
+
 TEST_F(ObjectCentricChartTest, DefaultsAndObjectFrameReachTheSameOptimum) {
   ASSERT_TRUE(SolverOptions{}.world_anchored_object_points);
   ASSERT_TRUE(SolverOptions{}.world_frame_kinematic_residual);

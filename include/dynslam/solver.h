@@ -95,6 +95,13 @@ struct SolverOptions {
   bool dsc_motion_residual = false;
   double dsc_motion_sigma = 0.1;
   bool dsc_object_motion_residual = false;
+  // SPEC §7 item 7, the released code's GTSAM Levenberg–Marquardt (docs/COMPAT.md): damping λ·I
+  // from λ = 1e-5 (Ceres: Jacobi scaling off, LM diagonal held at 1), giving up once λ ≥ 1e5,
+  // stopping at the first step that changes the cost by ≤ 1e-5 relative, or is accepted with a
+  // decrease ≤ 1e-5, or after 100 accepted steps. ResolveAuto sets the minimizer (LM),
+  // initial_lambda, the tolerances and max_iterations to match. Ceres moves λ by its own rule
+  // (÷ at most 3 after a success, × 2, 4, 8, … after failures), GTSAM by a fixed factor of 10.
+  bool dsc_released_lm = false;
   // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
   std::array<RobustKernel, kNumEdgeKinds> kernels{};
   // Polled before the first step and after every step: when it returns true the solve ends
