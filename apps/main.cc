@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
   // Past a file-size limit (ulimit -f) a write then fails with EFBIG and the output writers
   // report the file (dynslam/file_io.h), instead of SIGXFSZ ending the process mid-write.
   std::signal(SIGXFSZ, SIG_IGN);
+  // Ctrl-C in `dynslam … | tee log` ends tee too; a progress line written after that must fail
+  // with EPIPE rather than kill the process before it has saved its outputs.
+  std::signal(SIGPIPE, SIG_IGN);
   if (argc < 2) {
     PrintUsage(std::cerr);
     return dynslam::cli::kExitBadInput;

@@ -66,6 +66,7 @@ int RunSimulate(int argc, char** argv) {
   SimulateOptions o;
   std::string kitti_dir = "data/kitti_tracking", sequence, frames, out_prefix;
   std::string object_types = "Car,Van,Truck,Tram,Cyclist,Misc";
+  std::string density = "default";
   int64_t seed = 0;
   bool no_noise = false;
   ArgParser parser(
@@ -111,6 +112,10 @@ int RunSimulate(int argc, char** argv) {
                    "fraction of point observations with a gross error", 0, 1);
   parser.AddDouble("outlier-min", &o.outlier_min, "m, smallest gross error", 0, 1e6);
   parser.AddDouble("outlier-max", &o.outlier_max, "m, largest gross error", 0, 1e6);
+  parser.AddChoice("density", &density, {"default", "paper"},
+                   "paper: as many tracked points as the paper's front end, per sequence, so that "
+                   "whole sequences build to its Table I variable counts (docs/SIMULATOR.md); "
+                   "sets --static-points and --dynamic-points");
   parser.AddInt("static-points", &o.static_points_per_frame,
                 "tracked static points kept per frame", 0, 1000000);
   parser.AddInt("dynamic-points", &o.dynamic_points_per_object,
@@ -142,6 +147,14 @@ int RunSimulate(int argc, char** argv) {
   if (!sequence.empty() && sequence.find_first_not_of("0123456789") == std::string::npos &&
       sequence.size() < 4) {
     sequence = std::string(4 - sequence.size(), '0') + sequence;  // 3 → 0003
+  }
+  if (density == "paper") {
+    if (o.synthetic || !UsePaperDensity(sequence, &o)) {
+      return usage_error("--density paper: only for the paper's sequences 0000-0006, 0018, 0020");
+    }
+    if (parser.Given("static-points") || parser.Given("dynamic-points")) {
+      return usage_error("--density paper sets --static-points and --dynamic-points: give one");
+    }
   }
   o.seed = static_cast<uint64_t>(seed);
   o.noise = !no_noise;

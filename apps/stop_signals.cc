@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 
 namespace dynslam::cli {
@@ -11,9 +12,11 @@ volatile std::sig_atomic_t g_stop_signal = 0;
 
 // Async-signal-safe calls only.
 extern "C" void OnStopSignal(int signal_number) {
+  const int saved_errno = errno;  // the interrupted code may be about to read it
   if (g_stop_signal != 0) {
     std::signal(signal_number, SIG_DFL);
     std::raise(signal_number);
+    errno = saved_errno;
     return;
   }
   g_stop_signal = signal_number;
@@ -21,6 +24,7 @@ extern "C" void OnStopSignal(int signal_number) {
       "\ndynslam: stopping after the current step and writing the outputs (signal again to quit "
       "at once, losing them)\n";
   [[maybe_unused]] const ssize_t ignored = write(STDERR_FILENO, kMessage, sizeof(kMessage) - 1);
+  errno = saved_errno;
 }
 
 }  // namespace

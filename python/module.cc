@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -96,28 +97,8 @@ py::object ParseJsonText(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
-// Ctrl-C during a solve: the solve stops after its step and returns what it reached
-// (termination "interrupted"); Python's KeyboardInterrupt is raised only when the solve is over.
-SolveReport SolveReleasingTheGil(SolverOptions options, Graph* graph) {
-  bool interrupted = false;
-  options.should_stop = [&interrupted] {
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      PyErr_Clear();
-      interrupted = true;
-    }
-    return interrupted;
-  };
-  Expected<SolveReport> report = [&] {
-    py::gil_scoped_release release;
-    return Solve(options, graph);
-  }();
-  if (interrupted) {
-    PyErr_WarnEx(PyExc_RuntimeWarning, "dynslam.solve: interrupted; returning the last accepted "
-                 "state (termination 'interrupted')", 1);
-  }
-  return Unwrap(std::move(report));
-}
+struct PySolveReport;
+PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph);
 
 struct PySolveReport {
   SolveReport report;
@@ -158,6 +139,30 @@ struct PySolveReport {
     return ParseJsonText(SummaryJson(outputs));
   }
 };
+
+// Solves a copy of `graph` without holding the GIL. A Python signal handler that raises during
+// the solve (Ctrl-C's KeyboardInterrupt) stops it after its step; the exception is raised again
+// when the solve is over, carrying what it reached as `.report` (termination "interrupted"), so
+// that a loop of solves stops and no work is lost. (Python runs signal handlers only in the main
+// thread: a solve in another thread is not interrupted.)
+PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph) {
+  std::optional<py::error_already_set> raised;
+  options.should_stop = [&raised] {
+    py::gil_scoped_acquire gil;
+    if (!raised && PyErr_CheckSignals() != 0) raised.emplace();  // takes the pending exception
+    return raised.has_value();
+  };
+  Expected<SolveReport> report = [&] {
+    py::gil_scoped_release release;
+    return Solve(options, &graph);
+  }();
+  PySolveReport out{Unwrap(std::move(report)), std::move(graph)};
+  if (raised) {
+    raised->value().attr("report") = py::cast(std::move(out));
+    throw std::move(*raised);
+  }
+  return out;
+}
 
 GroundTruth AsGroundTruth(const py::object& gt) {
   if (py::isinstance<py::str>(gt)) return Unwrap(ReadGroundTruth(gt.cast<std::string>()));
@@ -257,9 +262,7 @@ void DefineFunctions(py::module_& m) {
   }, py::arg("frontend"), py::arg("formulation"), py::arg("gt") = py::none(),
      "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path");
   m.def("solve", [](const Graph& graph, const py::kwargs& options) {
-    PySolveReport out{SolveReport{}, graph};
-    out.report = SolveReleasingTheGil(ToSolverOptions(options), &out.graph);
-    return out;
+    return SolveReleasingTheGil(ToSolverOptions(options), graph);
   }, py::arg("graph"), "solve a copy of the graph; options are SolverOptions's fields");
   m.def("metrics", [](const Graph& graph, const py::object& gt) {
     return ParseJsonText(MetricsJson(ComputeMetrics(graph, AsGroundTruth(gt))));

@@ -50,7 +50,10 @@ Expected<JsonValue> ParseJson(const std::string& text, const std::string& name) 
     const int64_t line = 1 + std::count(text.begin(), text.begin() + end, '\n');
     std::string message = error.what();
     const size_t detail = message.find("parse error");
-    return Error{name, line, "not valid JSON (" + message.substr(detail == std::string::npos ? 0 : detail) + ")"};
+    return Error{name, line,
+                 "not valid JSON (" + message.substr(detail == std::string::npos ? 0 : detail) + ")"};
+  } catch (const JsonValue::exception& error) {  // e.g. a number beyond a double's range
+    return Error{name, 0, std::string("not valid JSON (") + error.what() + ")"};
   }
 }
 

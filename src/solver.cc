@@ -715,7 +715,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
     case ceres::USER_SUCCESS:
       report.termination = recorder.stop_reason();
       report.termination_detail =
-          recorder.stop_detail() + "; the solution is the last accepted state";
+          recorder.stop_detail() + "; the solution is the best accepted state";
       break;
     default: report.termination = "failure"; break;
   }

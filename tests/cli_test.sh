@@ -87,6 +87,9 @@ if /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1; then
 else
   echo "SKIP: plot cases (/usr/bin/python3 cannot import matplotlib)"
 fi
+check "simulate --density paper" 0 "$dynslam" simulate --kitti "$root/data/kitti_tracking" --seq 0002 --frames 0:5 --density paper --out "$work/paper"
+check "simulate --density paper needs a sequence of the paper" 2 "$dynslam" simulate --synthetic --density paper --out "$work/paper"
+check "--density paper and --static-points conflict" 2 "$dynslam" simulate --kitti "$root/data/kitti_tracking" --seq 0002 --frames 0:5 --density paper --static-points 10 --out "$work/paper"
 check "compare without ground truth" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/compare_nogt" --formulations wc,oc_b
 expect_output "compare without ground truth says what needs it" "need ground truth"
 if [ "$(grep -c '| needs --gt | needs --gt |' "$work/compare_nogt/tables.md")" = 2 ] &&

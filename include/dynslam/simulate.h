@@ -167,6 +167,13 @@ struct SimulatedScene {
 
 Expected<SimulatedScene> Simulate(const Scene& scene, const SimulateOptions& options);
 
+// `--density paper`: the tracked points per frame and per moving object that make each of the
+// paper's nine sequences, simulated whole, as large as its Table I (object-centric and
+// world-centric variables within 2 %, docs/SIMULATOR.md). Calibrated per sequence, because
+// VDO-SLAM's dense flow tracked more points where the images have more texture and larger
+// objects. False (options unchanged) for a sequence the paper did not use.
+bool UsePaperDensity(const std::string& sequence, SimulateOptions* options);
+
 // "  frames   144\n  static_points   …" — one `name value` line per statistic.
 std::string FormatStatistics(const SimulateStatistics& statistics);
 

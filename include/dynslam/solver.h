@@ -105,7 +105,8 @@ struct SolverOptions {
   // Indexed by static_cast<int>(EdgeKind); none by default (SPEC §1.5).
   std::array<RobustKernel, kNumEdgeKinds> kernels{};
   // Polled before the first step and after every step: when it returns true the solve ends
-  // there, at the last accepted state, usable, with termination "interrupted". The command
+  // there, usable, with termination "interrupted", at the last accepted state (with
+  // non-monotonic steps on, Ceres's lowest-cost accepted state). The command
   // line sets it from SIGINT/SIGTERM; the library itself installs no signal handler.
   std::function<bool()> should_stop;
   // Seconds from the start of Solve (set-up included) after which the solve ends as with

@@ -116,3 +116,25 @@ def test_example_compares_and_plots(tmp_path):
     assert out.stat().st_size > 1000
     for name in dynslam.FORMULATIONS:
         assert name in result.stdout
+
+
+def test_ctrl_c_stops_the_solve_and_keeps_its_report(tmp_path):
+    """SIGINT during a long solve: KeyboardInterrupt after the current step, with the report."""
+    script = tmp_path / "interrupt.py"
+    script.write_text(
+        "import os, signal, threading, dynslam\n"
+        "frontend, gt = dynslam.simulate(synthetic=True, synthetic_frames=400, seed=1)\n"
+        "graph = dynslam.build(frontend, 'wc', gt)\n"
+        "threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()\n"
+        "try:\n"
+        "    dynslam.solve(graph)\n"
+        "    print('finished')\n"
+        "except KeyboardInterrupt as interrupt:\n"
+        "    r = interrupt.report\n"
+        "    print('interrupted', r.termination, r.steps, r.usable, r.final_cost < r.initial_cost)\n")
+    result = subprocess.run(["/usr/bin/python3", str(script)], capture_output=True, text=True,
+                            env=dict(os.environ), timeout=300)
+    assert result.returncode == 0, result.stderr
+    words = result.stdout.split()
+    assert words[:2] == ["interrupted", "interrupted"], result.stdout
+    assert 0 < int(words[2]) < 11 and words[3:] == ["True", "True"], result.stdout
