@@ -126,6 +126,12 @@ TEST(JsonIoTest, WhatJsonForbidsIsAnErrorWithFileAndLine) {
   }
 }
 
+TEST(JsonIoTest, ANumberBeyondADoubleIsAnErrorNotACrash) {
+  Expected<JsonValue> parsed = ParseJson("{\"final_cost\": 1e400}", "summary.json");
+  ASSERT_FALSE(parsed.ok());
+  EXPECT_EQ(parsed.error().file, "summary.json");
+}
+
 TEST(JsonIoTest, NonFiniteNumbersAreWrittenAsNull) {
   JsonValue json = {{"inf", std::numeric_limits<double>::infinity()},
                     {"nan", std::numeric_limits<double>::quiet_NaN()}};
