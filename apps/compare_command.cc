@@ -322,15 +322,11 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   if (gt) {
     row.metrics = ComputeMetrics(*graph, *gt);
     outputs.metrics = row.metrics;
-    for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *gt)) {
-      outputs.object_poses.push_back({key.first, key.second, pose});
-    }
   } else {
     outputs.warnings.push_back(formulation == Formulation::kWorldCentric
                                    ? "no ground truth: no metrics"
                                    : "no ground truth: no metrics; each segment's first object "
                                      "pose started by the centroid rule (SPEC §3.3)");
-    outputs.object_poses = ObjectPoseVariables(*graph);
   }
   if (Status s = WriteSolveOutputs(dir.string(), outputs); !s.ok()) {
     return fail(s.error());

@@ -142,11 +142,6 @@ int RunSolve(int argc, char** argv) {
   if (ground_truth) {
     outputs.ground_truth = &*ground_truth;
     outputs.metrics = ComputeMetrics(*graph, *ground_truth);
-    for (const auto& [key, pose] : EstimatedObjectPoses(*graph, *ground_truth)) {
-      outputs.object_poses.push_back({key.first, key.second, pose});
-    }
-  } else {
-    outputs.object_poses = ObjectPoseVariables(*graph);
   }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
     std::cerr << "error: " << status.error().ToString() << "\n";

@@ -75,6 +75,16 @@ std::string ConvergenceCsv(const SolveReport& report) {
   return text;
 }
 
+std::vector<ObjectPoseRow> EstimatedObjectPoseRows(const SolveOutputs& outputs) {
+  const GroundTruth none;  // object-centric poses need none; world-centric ones get none then
+  std::vector<ObjectPoseRow> rows;
+  for (const auto& [key, pose] : EstimatedObjectPoses(
+           *outputs.solved, outputs.ground_truth ? *outputs.ground_truth : none)) {
+    rows.push_back({key.first, key.second, pose});
+  }
+  return rows;
+}
+
 JsonValue CostJson(const CostByKind& cost) {
   JsonValue json = JsonValue::object();
   for (const EdgeKind kind : kAllEdgeKinds) json[EdgeKindName(kind)] = cost[static_cast<int>(kind)];
@@ -137,10 +147,6 @@ std::string FormulationOf(const Graph& graph, std::string* source) {
   if (!graph.motion_edges.empty()) return "wc";
   if (graph.point_edges.empty()) return "pose_graph";
   return "static";
-}
-
-std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph) {
-  return VariablesWithRole(graph, Role::kObjectPose);
 }
 
 std::string SummaryJson(const SolveOutputs& outputs) {
@@ -211,7 +217,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
   const std::pair<const char*, std::string> files[] = {
       {"cameras.csv", CamerasCsv(graph)},
       {"motions.csv", ObjectFrameCsv(VariablesWithRole(graph, Role::kMotion))},
-      {"object_poses.csv", ObjectFrameCsv(outputs.object_poses)},
+      {"object_poses.csv", ObjectFrameCsv(EstimatedObjectPoseRows(outputs))},
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
       {"summary.json", SummaryJson(outputs) + "\n"},
   };

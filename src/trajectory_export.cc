@@ -1,6 +1,5 @@
 #include "dynslam/trajectory_export.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -59,16 +58,13 @@ std::vector<Trajectory> ExportedTrajectories(const Graph& solved, const GroundTr
   AddPair("camera", cameras, ground_truth,
           [&](int64_t frame) { return ground_truth->Camera(frame); }, &estimates, &truths);
 
+  // Without ground truth a world-centric graph composes no object poses (SPEC §5 starts them
+  // at the true pose).
   std::map<int64_t, std::map<int64_t, Pose>> objects;  // object → frame → L
-  const bool object_centric = std::any_of(solved.vertices.begin(), solved.vertices.end(),
-                                          [](const auto& v) {
-                                            return v.second.label.role == Role::kObjectPose;
-                                          });
-  if (object_centric || ground_truth) {
-    const GroundTruth none;
-    for (const auto& [key, pose] : EstimatedObjectPoses(solved, ground_truth ? *ground_truth : none)) {
-      objects[key.first][key.second] = pose;
-    }
+  const GroundTruth none;
+  for (const auto& [key, pose] :
+       EstimatedObjectPoses(solved, ground_truth ? *ground_truth : none)) {
+    objects[key.first][key.second] = pose;
   }
   for (const auto& [object, poses] : objects) {
     AddPair("object_" + std::to_string(object), poses, ground_truth,

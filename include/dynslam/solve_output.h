@@ -28,23 +28,20 @@ struct SolveOutputs {
   std::string input;                    // the graph file, as given
   const Graph* solved = nullptr;        // at the optimised values
   const SolveReport* report = nullptr;
-  // object_poses.csv rows: the L variables of an object-centric graph, or the poses composed
-  // from motions and ground truth for a world-centric one (SPEC §4, §5). Empty: header only.
-  std::vector<ObjectPoseRow> object_poses;
   std::optional<Metrics> metrics;       // SPEC §5, when ground truth was given
   std::vector<std::string> warnings;    // reading/building warnings to keep in the summary
-  // Trajectory files for evo (trajectory_export.h), with the true ones when ground_truth is set.
+  // object_poses.csv holds the L variables of an object-centric graph, or, with ground truth, the
+  // poses a world-centric one composes from its motions (EstimatedObjectPoses, SPEC §4, §5); the
+  // exported trajectories add the true ones.
+  const GroundTruth* ground_truth = nullptr;
+  // Trajectory files for evo (trajectory_export.h).
   std::vector<TrajectoryFormat> export_formats;
   double export_rate_hz = 10;  // KITTI Tracking's frame rate
-  const GroundTruth* ground_truth = nullptr;
 };
 
 // "wc", "oc_b", … from LABEL_FORMULATION; otherwise inferred from the edges ("pose_graph" when
 // there are only poses). `source` receives "label" or "inferred".
 std::string FormulationOf(const Graph& graph, std::string* source);
-
-// The object poses L of an object-centric graph, by (object, frame).
-std::vector<ObjectPoseRow> ObjectPoseVariables(const Graph& graph);
 
 // summary.json's text (SPEC §4), without the trailing newline.
 std::string SummaryJson(const SolveOutputs& outputs);
