@@ -100,11 +100,11 @@ class Builder {
 
 Status Builder::FindTracklets() {
   std::unordered_map<VertexId, const MotionEdge*> next, previous;
-  for (const MotionEdge& e : fe_.motion_edges) {
+  for (const MotionEdge& e : fe_.Edges<MotionEdge>()) {
     next[e.prev] = &e;
     previous[e.curr] = &e;
   }
-  for (const PointEdge& e : fe_.point_edges) {
+  for (const PointEdge& e : fe_.Edges<PointEdge>()) {
     if (!e.is_dynamic) continue;
     if (auto [it, inserted] = dynamic_observation_.emplace(e.point, &e); !inserted) {
       return Fail(e.line, "dynamic point " + std::to_string(e.point) +
@@ -189,7 +189,7 @@ Status Builder::FindSegments() {
     }
   }
   std::map<int64_t, std::set<int64_t>> joined_frames;  // object → frames k with an edge (k−1, k)
-  for (const MotionEdge& e : fe_.motion_edges) {
+  for (const MotionEdge& e : fe_.Edges<MotionEdge>()) {
     const Label& motion = fe_.Find(e.motion)->label;
     if (motion.object != e.object || motion.frame != e.frame) {
       return Fail(e.line, "EDGE_SE3_MOTION of object " + std::to_string(e.object) + " at frame " +
@@ -290,7 +290,7 @@ void Builder::ReportDrops() {
       edges += static_cast<int64_t>(t->edges.size());
     }
     int64_t smoothing = 0;
-    for (const BetweenEdge& e : fe_.betweens) {
+    for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
       const Label& a = fe_.Find(e.from)->label;
       smoothing += a.role == Role::kMotion && a.object == s.object && a.frame > s.first &&
                    a.frame <= s.last;
@@ -317,7 +317,7 @@ void Builder::ReportDrops() {
     Say("dropped: " + Count(motions_in_no_segment, "motions") + ": in no motion edge");
   }
   int64_t dropped_smoothing = 0, not_consecutive = 0;
-  for (const BetweenEdge& e : fe_.betweens) {
+  for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
     if (fe_.Find(e.from)->label.role != Role::kMotion) continue;
     if (kept_motions_.count(e.from) == 0 || kept_motions_.count(e.to) == 0) {
       ++dropped_smoothing;
@@ -470,7 +470,7 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
   prior.information.diagonal() << Eigen::Vector3d::Constant(
       1.0 / options_.object_prior_rotation_variance),
       Eigen::Vector3d::Constant(1.0 / options_.object_prior_translation_variance);
-  out.priors.push_back(prior);
+  out.Edges<PriorEdge>().push_back(prior);
   segment_pose_ids_[&segment] = pose_ids;
 }
 
@@ -490,15 +490,15 @@ Expected<Graph> Builder::Build(Formulation formulation) {
     AddVertex(out, id, fe_.Find(id)->label);
     out.vertices.at(id).set_pose(MotionValue(id));
   }
-  for (const PriorEdge& e : fe_.priors) out.priors.push_back(e);
-  for (const BetweenEdge& e : fe_.betweens) {
+  for (const PriorEdge& e : fe_.Edges<PriorEdge>()) out.Edges<PriorEdge>().push_back(e);
+  for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
     const bool odometry = fe_.Find(e.from)->label.role == Role::kCamera;
     if (odometry || KeptSmoothing(e)) {
-      out.betweens.push_back(e);
+      out.Edges<BetweenEdge>().push_back(e);
     }
   }
-  for (const PointEdge& e : fe_.point_edges) {
-    if (!e.is_dynamic) out.point_edges.push_back(e);
+  for (const PointEdge& e : fe_.Edges<PointEdge>()) {
+    if (!e.is_dynamic) out.Edges<PointEdge>().push_back(e);
   }
 
   if (world_centric) {
@@ -508,9 +508,9 @@ Expected<Graph> Builder::Build(Formulation formulation) {
         Label label = fe_.Find(p)->label;
         label.tracklet = t.id;
         AddVertex(out, p, label);
-        out.point_edges.push_back(*dynamic_observation_.at(p));
+        out.Edges<PointEdge>().push_back(*dynamic_observation_.at(p));
       }
-      for (const MotionEdge* e : t.edges) out.motion_edges.push_back(*e);
+      for (const MotionEdge* e : t.edges) out.Edges<MotionEdge>().push_back(*e);
     }
   } else {
     VertexId next_id = fe_.vertices.empty() ? 0 : fe_.vertices.rbegin()->first + 1;
@@ -521,12 +521,12 @@ Expected<Graph> Builder::Build(Formulation formulation) {
         Matrix6d::Identity() / (options_.kinematic_sigma * options_.kinematic_sigma);
     // SPEC §7 item 5: one information per point-edge kind (the first edge's), σ = 0.2 motions.
     const PointEdge* first_dynamic = nullptr;
-    for (const PointEdge& e : fe_.point_edges) {
+    for (const PointEdge& e : fe_.Edges<PointEdge>()) {
       if (e.is_dynamic && first_dynamic == nullptr) first_dynamic = &e;
     }
     if (options_.dsc_object_centric_noise) {
       const PointEdge* first_static = nullptr;
-      for (PointEdge& e : out.point_edges) {
+      for (PointEdge& e : out.Edges<PointEdge>()) {
         if (first_static == nullptr) first_static = &e;
         e.information = first_static->information;
       }
@@ -544,7 +544,7 @@ Expected<Graph> Builder::Build(Formulation formulation) {
           e.measurement = observation.measurement;
           e.information = options_.dsc_object_centric_noise ? first_dynamic->information
                                                              : observation.information;
-          out.object_point_edges.push_back(e);
+          out.Edges<ObjectPointEdge>().push_back(e);
         }
         if (formulation == Formulation::kObjectCentricC) continue;
         for (const MotionEdge* m : t->edges) {
@@ -562,7 +562,7 @@ Expected<Graph> Builder::Build(Formulation formulation) {
           e.information = options_.dsc_object_centric_noise
                               ? Eigen::Matrix3d(Eigen::Matrix3d::Identity() / (0.2 * 0.2))
                               : m->information;
-          out.object_motion_edges.push_back(e);
+          out.Edges<ObjectMotionEdge>().push_back(e);
         }
       }
       if (formulation == Formulation::kObjectCentricA) continue;
@@ -572,7 +572,7 @@ Expected<Graph> Builder::Build(Formulation formulation) {
         e.pose_curr = pose_ids.at(k);
         e.motion = motion_at_.at({segment.object, k});
         e.information = kinematic_information;
-        out.kinematic_edges.push_back(e);
+        out.Edges<KinematicEdge>().push_back(e);
       }
     }
     int64_t poses = 0;

@@ -11,7 +11,9 @@
 #include <limits>
 #include <sstream>
 #include <string_view>
+#include <optional>
 #include <tuple>
+#include <type_traits>
 #include <unordered_map>
 
 #include <Eigen/Cholesky>
@@ -26,56 +28,6 @@ namespace {
 // comes from file index kG2oIndex[i].
 constexpr int kG2oIndex[6] = {3, 4, 5, 0, 1, 2};
 
-enum class Tag {
-  kVertexPose,
-  kVertexPoint,
-  kPrior,
-  kBetween,
-  kPoint,
-  kMotion,
-  kObjectPoint,
-  kObjectMotion,
-  kKinematic,
-  kLabelCamera,
-  kLabelStaticPoint,
-  kLabelDynamicPoint,
-  kLabelMotion,
-  kLabelObjectPose,
-  kLabelObjectPoint,
-  kLabelFormulation,
-  kUnknown,
-};
-
-struct TagInfo {
-  const char* name;
-  Tag tag;
-};
-constexpr TagInfo kTags[] = {
-    {"VERTEX_SE3:QUAT", Tag::kVertexPose},
-    {"VERTEX_TRACKXYZ", Tag::kVertexPoint},
-    {"EDGE_SE3_PRIOR", Tag::kPrior},
-    {"EDGE_SE3:QUAT", Tag::kBetween},
-    {"EDGE_SE3_TRACKXYZ", Tag::kPoint},
-    {"EDGE_SE3_MOTION", Tag::kMotion},
-    {"EDGE_SE3_OBJ_TRACKXYZ", Tag::kObjectPoint},
-    {"EDGE_SE3_OBJ_MOTION", Tag::kObjectMotion},
-    {"EDGE_SE3_OBJ_KINEMATIC", Tag::kKinematic},
-    {"LABEL_CAMERA", Tag::kLabelCamera},
-    {"LABEL_STATIC_POINT", Tag::kLabelStaticPoint},
-    {"LABEL_DYNAMIC_POINT", Tag::kLabelDynamicPoint},
-    {"LABEL_MOTION", Tag::kLabelMotion},
-    {"LABEL_OBJECT_POSE", Tag::kLabelObjectPose},
-    {"LABEL_OBJECT_POINT", Tag::kLabelObjectPoint},
-    {"LABEL_FORMULATION", Tag::kLabelFormulation},
-};
-
-Tag LookUp(std::string_view name) {
-  for (const TagInfo& info : kTags) {
-    if (name == info.name) return info.tag;
-  }
-  return Tag::kUnknown;
-}
-
 const char* kFormulationNames[] = {"frontend", "wc", "oc_a", "oc_b", "oc_c"};
 
 // One line being parsed: its fields after the tag, and errors that name file, line and tag.
@@ -89,6 +41,7 @@ class LineParser {
         permute_information_(permute_information), repaired_(repaired) {}
 
   size_t size() const { return fields_.size(); }
+  std::string_view field(size_t i) const { return fields_[i]; }
 
   Error Fail(const std::string& message) const {
     return Error{file_, line_, std::string(tag_) + ": " + message};
@@ -258,6 +211,87 @@ class LineParser {
   int64_t* repaired_;
 };
 
+// The field layout of an edge struct (graph_schema.h): required count, optional count, and
+// the text that names them in messages ("pose point zx zy zz I(6) [is_dynamic]").
+struct EdgeLayout {
+  size_t required = 0;
+  size_t optional = 0;
+  std::string text;
+
+  void Add(size_t n, const std::string& name) {
+    required += n;
+    text += (text.empty() ? "" : " ") + name;
+  }
+  void Vertex(const VertexField& field, VertexId) { Add(1, field.name); }
+  void Integer(const char* name, int64_t) { Add(1, name); }
+  void OptionalOffsetParameter(const char* name, bool) { AddOptional(name); }
+  void OptionalFlag(const char* name, bool) { AddOptional(name); }
+  void Measurement(const Pose&) { Add(7, "tx ty tz qx qy qz qw"); }
+  void Measurement(const Eigen::Vector3d&) { Add(3, "zx zy zz"); }
+  void Information(const Eigen::Matrix3d&) { Add(6, "I(6)"); }
+  void Information(const Matrix6d&) { Add(21, "I(21)"); }
+
+ private:
+  void AddOptional(const char* name) {
+    ++optional;
+    text += std::string(text.empty() ? "" : " ") + "[" + name + "]";
+  }
+};
+
+// Fills an edge from a line's fields, in the order its struct lists them; stops at the first
+// error. `with_optional`: the line carries the tag's optional field.
+class EdgeFieldParser {
+ public:
+  EdgeFieldParser(const LineParser& p, bool with_optional) : p_(p), with_optional_(with_optional) {}
+
+  void Vertex(const VertexField&, VertexId& id) { Next(1, [&] { return p_.Integer(i_, &id, "vertex id", &error_); }); }
+  void Integer(const char* name, int64_t& value) {
+    Next(1, [&] { return p_.Integer(i_, &value, name, &error_); });
+  }
+  void OptionalOffsetParameter(const char* name, bool& present) {
+    present = with_optional_;
+    if (!present) return;
+    Next(1, [&] {
+      int64_t value;
+      if (!p_.Integer(i_, &value, name, &error_)) return false;
+      if (value == 0) return true;
+      error_ = p_.Fail("the offset-parameter id must be 0, not " + std::to_string(value));
+      return false;
+    });
+  }
+  void OptionalFlag(const char* name, bool& value) {
+    value = false;
+    if (!with_optional_) return;
+    Next(1, [&] {
+      const std::string_view text = p_.field(i_);
+      value = text == "1";
+      if (text == "0" || text == "1") return true;
+      error_ = p_.Fail(std::string(name) + " '" + std::string(text) + "' must be 0 or 1");
+      return false;
+    });
+  }
+  void Measurement(Pose& pose) { Next(7, [&] { return p_.ReadPose(i_, &pose, &error_); }); }
+  void Measurement(Eigen::Vector3d& z) { Next(3, [&] { return p_.Numbers(i_, 3, z.data(), &error_); }); }
+  void Information(Eigen::Matrix3d& m) { Next(6, [&] { return p_.ReadInformation<3>(i_, &m, &error_); }); }
+  void Information(Matrix6d& m) { Next(21, [&] { return p_.Read6x6InTangentOrder(i_, &m, &error_); }); }
+
+  bool ok() const { return ok_; }
+  const Error& error() const { return error_; }
+
+ private:
+  template <typename Read>
+  void Next(size_t width, Read read) {
+    if (ok_) ok_ = read();
+    i_ += width;
+  }
+
+  const LineParser& p_;
+  bool with_optional_;
+  size_t i_ = 0;
+  bool ok_ = true;
+  Error error_;
+};
+
 struct PendingLabel {
   VertexId id;
   Label label;
@@ -319,283 +353,149 @@ class Reader {
                   std::to_string(it->second.line) + ")");
   }
 
-  Status ParseLine(int64_t line, std::string_view tag_name, const std::vector<std::string_view>& f) {
-    const Tag tag = LookUp(tag_name);
-    LineParser p(name_, line, tag_name, f, !options_.information_in_tangent_order,
+  Status ParseLine(int64_t line, std::string_view tag, const std::vector<std::string_view>& f) {
+    LineParser p(name_, line, tag, f, !options_.information_in_tangent_order,
                  options_.repair_information ? &repaired_ : nullptr);
-    Error error;
-    switch (tag) {
-      case Tag::kUnknown: {
-        if (!options_.skip_unknown_tags) {
-          return Error{name_, line,
-                       "unknown tag '" + std::string(tag_name) +
-                           "' (pass --skip-unknown-tags to skip such lines)"};
-        }
-        if (report_ != nullptr) ++report_->skipped_tags[std::string(tag_name)];
-        return Status::Ok();
-      }
-      case Tag::kVertexPose: {
-        if (Status s = p.ExpectCount({8}, "id tx ty tz qx qy qz qw"); !s.ok()) return s;
-        VertexId id;
-        Pose pose;
-        if (!p.Integer(0, &id, "vertex id", &error) || !p.ReadPose(1, &pose, &error)) return error;
-        Vertex vertex;
-        vertex.type = VertexType::kPose;
-        vertex.value = pose.data;
-        vertex.line = line;
-        return AddVertex(id, vertex, p);
-      }
-      case Tag::kVertexPoint: {
-        if (Status s = p.ExpectCount({4}, "id x y z"); !s.ok()) return s;
-        VertexId id;
-        Vertex vertex;
-        vertex.type = VertexType::kPoint;
-        vertex.value.fill(0);
-        vertex.line = line;
-        if (!p.Integer(0, &id, "vertex id", &error) || !p.Numbers(1, 3, vertex.value.data(), &error)) {
-          return error;
-        }
-        return AddVertex(id, vertex, p);
-      }
-      case Tag::kPrior: {
-        if (Status s = p.ExpectCount({29, 30}, "id [param] tx ty tz qx qy qz qw I(21)"); !s.ok()) {
-          return s;
-        }
-        PriorEdge e;
-        e.line = line;
-        e.has_parameter_id = f.size() == 30;
-        const size_t first = e.has_parameter_id ? 2 : 1;
-        if (!p.Integer(0, &e.pose, "vertex id", &error)) return error;
-        if (e.has_parameter_id) {
-          int64_t parameter;
-          if (!p.Integer(1, &parameter, "parameter id", &error)) return error;
-          if (parameter != 0) return p.Fail("the offset-parameter id must be 0, not " + std::to_string(parameter));
-        }
-        if (!p.ReadPose(first, &e.measurement, &error) ||
-            !p.Read6x6InTangentOrder(first + 7, &e.information, &error)) {
-          return error;
-        }
-        graph_.priors.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kBetween: {
-        if (Status s = p.ExpectCount({30}, "a b tx ty tz qx qy qz qw I(21)"); !s.ok()) return s;
-        BetweenEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.from, "vertex id", &error) || !p.Integer(1, &e.to, "vertex id", &error) ||
-            !p.ReadPose(2, &e.measurement, &error) ||
-            !p.Read6x6InTangentOrder(9, &e.information, &error)) {
-          return error;
-        }
-        graph_.betweens.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kPoint: {
-        if (Status s = p.ExpectCount({11, 12}, "pose point zx zy zz I(6) [is_dynamic]"); !s.ok()) {
-          return s;
-        }
-        PointEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.pose, "vertex id", &error) ||
-            !p.Integer(1, &e.point, "vertex id", &error) ||
-            !p.Numbers(2, 3, e.measurement.data(), &error) ||
-            !p.ReadInformation<3>(5, &e.information, &error)) {
-          return error;
-        }
-        if (f.size() == 12) {
-          if (f[11] != "0" && f[11] != "1") return p.Fail("is_dynamic '" + std::string(f[11]) + "' must be 0 or 1");
-          e.is_dynamic = f[11] == "1";
-        }
-        graph_.point_edges.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kMotion: {
-        if (Status s = p.ExpectCount({15}, "prev curr motion zx zy zz I(6) object frame camera");
-            !s.ok()) {
-          return s;
-        }
-        MotionEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.prev, "vertex id", &error) ||
-            !p.Integer(1, &e.curr, "vertex id", &error) ||
-            !p.Integer(2, &e.motion, "vertex id", &error) ||
-            !p.Numbers(3, 3, e.measurement.data(), &error) ||
-            !p.ReadInformation<3>(6, &e.information, &error) ||
-            !p.Integer(12, &e.object, "object id", &error) ||
-            !p.Integer(13, &e.frame, "frame", &error) ||
-            !p.Integer(14, &e.camera, "camera id", &error)) {
-          return error;
-        }
-        if (e.frame < 1) return p.Fail("frame must be at least 1 (the current point's frame k)");
-        graph_.motion_edges.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kObjectPoint: {
-        if (Status s = p.ExpectCount({12}, "camera objpose point zx zy zz I(6)"); !s.ok()) return s;
-        ObjectPointEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.camera, "vertex id", &error) ||
-            !p.Integer(1, &e.object_pose, "vertex id", &error) ||
-            !p.Integer(2, &e.point, "vertex id", &error) ||
-            !p.Numbers(3, 3, e.measurement.data(), &error) ||
-            !p.ReadInformation<3>(6, &e.information, &error)) {
-          return error;
-        }
-        graph_.object_point_edges.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kObjectMotion: {
-        if (Status s = p.ExpectCount({10}, "pose_prev pose_curr motion point I(6)"); !s.ok()) return s;
-        ObjectMotionEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.pose_prev, "vertex id", &error) ||
-            !p.Integer(1, &e.pose_curr, "vertex id", &error) ||
-            !p.Integer(2, &e.motion, "vertex id", &error) ||
-            !p.Integer(3, &e.point, "vertex id", &error) ||
-            !p.ReadInformation<3>(4, &e.information, &error)) {
-          return error;
-        }
-        graph_.object_motion_edges.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kKinematic: {
-        if (Status s = p.ExpectCount({24}, "pose_prev pose_curr motion I(21)"); !s.ok()) return s;
-        KinematicEdge e;
-        e.line = line;
-        if (!p.Integer(0, &e.pose_prev, "vertex id", &error) ||
-            !p.Integer(1, &e.pose_curr, "vertex id", &error) ||
-            !p.Integer(2, &e.motion, "vertex id", &error) ||
-            !p.Read6x6InTangentOrder(3, &e.information, &error)) {
-          return error;
-        }
-        graph_.kinematic_edges.push_back(e);
-        return Status::Ok();
-      }
-      case Tag::kLabelFormulation: {
-        if (Status s = p.ExpectCount({1}, "name"); !s.ok()) return s;
-        if (graph_.formulation) {
-          return p.Fail("appears twice (first on line " + std::to_string(formulation_line_) + ")");
-        }
-        const std::string name(f[0]);
-        if (std::find(std::begin(kFormulationNames), std::end(kFormulationNames), name) ==
-            std::end(kFormulationNames)) {
-          return p.Fail("unknown formulation '" + name + "' (frontend, wc, oc_a, oc_b or oc_c)");
-        }
-        graph_.formulation = name;
-        formulation_line_ = line;
-        return Status::Ok();
-      }
-      default:
-        return ParseLabel(tag, p, f, line);
+    if (tag == "VERTEX_SE3:QUAT") return ParsePoseVertex(p, line);
+    if (tag == "VERTEX_TRACKXYZ") return ParsePointVertex(p, line);
+    if (tag == "LABEL_FORMULATION") return ParseFormulation(p, line);
+    std::optional<Status> edge;
+    EdgeTypes::ForEach([&](auto* type) {
+      using Edge = std::remove_pointer_t<decltype(type)>;
+      if (!edge && tag == Edge::kTag) edge = ParseEdge<Edge>(p, line);
+    });
+    if (edge) return *edge;
+    for (const RoleInfo& role : kRoles) {
+      if (tag == role.label_tag) return ParseLabel(role, p, line);
     }
+    if (!options_.skip_unknown_tags) {
+      return Error{name_, line,
+                   "unknown tag '" + std::string(tag) +
+                       "' (pass --skip-unknown-tags to skip such lines)"};
+    }
+    if (report_ != nullptr) ++report_->skipped_tags[std::string(tag)];
+    return Status::Ok();
   }
 
-  Status ParseLabel(Tag tag, const LineParser& p, const std::vector<std::string_view>& f,
-                    int64_t line) {
-    PendingLabel pending{0, Label{}, line, ""};
+  Status ParsePoseVertex(const LineParser& p, int64_t line) {
+    if (Status s = p.ExpectCount({8}, "id tx ty tz qx qy qz qw"); !s.ok()) return s;
+    VertexId id;
+    Pose pose;
     Error error;
-    // Field names after the id, per label tag (SPEC §1.4).
-    struct Layout {
-      Tag tag;
-      Role role;
-      const char* name;
-      std::vector<const char*> fields;
-    };
-    static const Layout kLayouts[] = {
-        {Tag::kLabelCamera, Role::kCamera, "LABEL_CAMERA", {"frame"}},
-        {Tag::kLabelStaticPoint, Role::kStaticPoint, "LABEL_STATIC_POINT", {"tracklet"}},
-        {Tag::kLabelDynamicPoint, Role::kDynamicPoint, "LABEL_DYNAMIC_POINT", {"object", "frame", "tracklet"}},
-        {Tag::kLabelMotion, Role::kMotion, "LABEL_MOTION", {"object", "frame"}},
-        {Tag::kLabelObjectPose, Role::kObjectPose, "LABEL_OBJECT_POSE", {"object", "frame"}},
-        {Tag::kLabelObjectPoint, Role::kObjectPoint, "LABEL_OBJECT_POINT", {"object", "tracklet"}},
-    };
-    const Layout* layout = nullptr;
-    for (const Layout& l : kLayouts) {
-      if (l.tag == tag) layout = &l;
+    if (!p.Integer(0, &id, "vertex id", &error) || !p.ReadPose(1, &pose, &error)) return error;
+    Vertex vertex;
+    vertex.type = VertexType::kPose;
+    vertex.value = pose.data;
+    vertex.line = line;
+    return AddVertex(id, vertex, p);
+  }
+
+  Status ParsePointVertex(const LineParser& p, int64_t line) {
+    if (Status s = p.ExpectCount({4}, "id x y z"); !s.ok()) return s;
+    VertexId id;
+    Vertex vertex;
+    vertex.type = VertexType::kPoint;
+    vertex.value.fill(0);
+    vertex.line = line;
+    Error error;
+    if (!p.Integer(0, &id, "vertex id", &error) || !p.Numbers(1, 3, vertex.value.data(), &error)) {
+      return error;
     }
-    if (layout == nullptr) return p.Fail("internal: no label layout");
-    std::string layout_text = "id";
-    for (const char* field : layout->fields) layout_text += std::string(" ") + field;
-    if (Status s = p.ExpectCount({1 + layout->fields.size()}, layout_text.c_str()); !s.ok()) return s;
+    return AddVertex(id, vertex, p);
+  }
+
+  Status ParseFormulation(const LineParser& p, int64_t line) {
+    if (Status s = p.ExpectCount({1}, "name"); !s.ok()) return s;
+    if (graph_.formulation) {
+      return p.Fail("appears twice (first on line " + std::to_string(formulation_line_) + ")");
+    }
+    const std::string name(p.field(0));
+    if (std::find(std::begin(kFormulationNames), std::end(kFormulationNames), name) ==
+        std::end(kFormulationNames)) {
+      return p.Fail("unknown formulation '" + name + "' (frontend, wc, oc_a, oc_b or oc_c)");
+    }
+    graph_.formulation = name;
+    formulation_line_ = line;
+    return Status::Ok();
+  }
+
+  // Any edge tag of graph_schema.h: the field count, then every field in the struct's order.
+  template <typename Edge>
+  Status ParseEdge(const LineParser& p, int64_t line) {
+    Edge edge;
+    EdgeLayout layout;
+    Edge::Fields(edge, layout);
+    const size_t with_optional = layout.required + layout.optional;
+    if (Status s = p.ExpectCount({layout.required, with_optional}, layout.text.c_str()); !s.ok()) {
+      return s;
+    }
+    EdgeFieldParser parser(p, layout.optional > 0 && p.size() == with_optional);
+    Edge::Fields(edge, parser);
+    if (!parser.ok()) return parser.error();
+    if (const std::string invalid = edge.Invalid(); !invalid.empty()) return p.Fail(invalid);
+    edge.line = line;
+    graph_.Edges<Edge>().push_back(edge);
+    return Status::Ok();
+  }
+
+  Status ParseLabel(const RoleInfo& role, const LineParser& p, int64_t line) {
+    std::string layout = "id";
+    for (int k = 0; k < role.num_fields; ++k) layout += std::string(" ") + LabelFieldName(role.fields[k]);
+    if (Status s = p.ExpectCount({1 + static_cast<size_t>(role.num_fields)}, layout.c_str());
+        !s.ok()) {
+      return s;
+    }
+    PendingLabel pending{0, Label{role.role}, line, role.label_tag};
+    Error error;
     if (!p.Integer(0, &pending.id, "vertex id", &error)) return error;
-    pending.label.role = layout->role;
-    pending.tag = layout->name;
-    for (size_t k = 0; k < layout->fields.size(); ++k) {
-      int64_t value;
-      if (!p.Integer(k + 1, &value, layout->fields[k], &error)) return error;
-      const std::string_view field = layout->fields[k];
-      if (field == "object") pending.label.object = value;
-      if (field == "frame") pending.label.frame = value;
-      if (field == "tracklet") pending.label.tracklet = value;
+    for (int k = 0; k < role.num_fields; ++k) {
+      if (!p.Integer(k + 1, &pending.label.at(role.fields[k]), LabelFieldName(role.fields[k]), &error)) {
+        return error;
+      }
     }
-    (void)f;
     labels_.push_back(pending);
     return Status::Ok();
   }
 
   // Every vertex an edge names exists and has the type the edge needs (SPEC §1.6).
   Status ResolveReferences() const {
-    auto check = [&](VertexId id, VertexType type, int64_t line, const char* tag,
-                     const char* field) -> Status {
-      const Vertex* vertex = graph_.Find(id);
-      if (vertex == nullptr) {
-        return Error{name_, line,
-                     std::string(tag) + ": field '" + field + "' names vertex " +
-                         std::to_string(id) + ", which is not declared in the file"};
+    Status status;
+    graph_.ForEachEdgeVector([&](const auto& edges) {
+      for (const auto& e : edges) {
+        struct Checker : IgnoreFields {
+          const Reader* reader;
+          Status* status;
+          int64_t line;
+          const char* tag;
+          void Vertex(const VertexField& field, VertexId id) {
+            if (status->ok()) *status = reader->CheckReference(id, field, line, tag);
+          }
+        } checker;
+        checker.reader = this;
+        checker.status = &status;
+        checker.line = e.line;
+        checker.tag = e.kTag;
+        e.Fields(e, checker);
       }
-      if (vertex->type != type) {
-        return Error{name_, line,
-                     std::string(tag) + ": field '" + field + "' names vertex " +
-                         std::to_string(id) + ", a " +
-                         (vertex->type == VertexType::kPose ? "pose" : "point") +
-                         " (line " + std::to_string(vertex->line) + "); expected a " +
-                         (type == VertexType::kPose ? "pose" : "point")};
-      }
-      return Status::Ok();
-    };
-    const VertexType P = VertexType::kPose, M = VertexType::kPoint;
-    for (const auto& e : graph_.priors) {
-      if (Status s = check(e.pose, P, e.line, "EDGE_SE3_PRIOR", "id"); !s.ok()) return s;
+    });
+    return status;
+  }
+
+  Status CheckReference(VertexId id, const VertexField& field, int64_t line,
+                        const char* tag) const {
+    const Vertex* vertex = graph_.Find(id);
+    if (vertex == nullptr) {
+      return Error{name_, line,
+                   std::string(tag) + ": field '" + field.name + "' names vertex " +
+                       std::to_string(id) + ", which is not declared in the file"};
     }
-    for (const auto& e : graph_.betweens) {
-      for (const auto& [id, field] : {std::pair{e.from, "a"}, std::pair{e.to, "b"}}) {
-        if (Status s = check(id, P, e.line, "EDGE_SE3:QUAT", field); !s.ok()) return s;
-      }
-    }
-    for (const auto& e : graph_.point_edges) {
-      if (Status s = check(e.pose, P, e.line, "EDGE_SE3_TRACKXYZ", "pose"); !s.ok()) return s;
-      if (Status s = check(e.point, M, e.line, "EDGE_SE3_TRACKXYZ", "point"); !s.ok()) return s;
-    }
-    for (const auto& e : graph_.motion_edges) {
-      const char* tag = "EDGE_SE3_MOTION";
-      for (const auto& [id, type, field] :
-           {std::tuple{e.prev, M, "prev"}, std::tuple{e.curr, M, "curr"},
-            std::tuple{e.motion, P, "motion"}, std::tuple{e.camera, P, "camera"}}) {
-        if (Status s = check(id, type, e.line, tag, field); !s.ok()) return s;
-      }
-    }
-    for (const auto& e : graph_.object_point_edges) {
-      const char* tag = "EDGE_SE3_OBJ_TRACKXYZ";
-      for (const auto& [id, type, field] :
-           {std::tuple{e.camera, P, "camera"}, std::tuple{e.object_pose, P, "objpose"},
-            std::tuple{e.point, M, "point"}}) {
-        if (Status s = check(id, type, e.line, tag, field); !s.ok()) return s;
-      }
-    }
-    for (const auto& e : graph_.object_motion_edges) {
-      const char* tag = "EDGE_SE3_OBJ_MOTION";
-      for (const auto& [id, type, field] :
-           {std::tuple{e.pose_prev, P, "pose_prev"}, std::tuple{e.pose_curr, P, "pose_curr"},
-            std::tuple{e.motion, P, "motion"}, std::tuple{e.point, M, "point"}}) {
-        if (Status s = check(id, type, e.line, tag, field); !s.ok()) return s;
-      }
-    }
-    for (const auto& e : graph_.kinematic_edges) {
-      const char* tag = "EDGE_SE3_OBJ_KINEMATIC";
-      for (const auto& [id, field] : {std::pair{e.pose_prev, "pose_prev"},
-                                      std::pair{e.pose_curr, "pose_curr"}, std::pair{e.motion, "motion"}}) {
-        if (Status s = check(id, P, e.line, tag, field); !s.ok()) return s;
-      }
+    if (vertex->type != field.type) {
+      return Error{name_, line,
+                   std::string(tag) + ": field '" + field.name + "' names vertex " +
+                       std::to_string(id) + ", a " +
+                       (vertex->type == VertexType::kPose ? "pose" : "point") + " (line " +
+                       std::to_string(vertex->line) + "); expected a " +
+                       (field.type == VertexType::kPose ? "pose" : "point")};
     }
     return Status::Ok();
   }
@@ -612,9 +512,7 @@ class Reader {
                      std::string(pending.tag) + " names vertex " + std::to_string(pending.id) +
                          ", which is not declared in the file"};
       }
-      const bool wants_pose = pending.label.role == Role::kCamera ||
-                              pending.label.role == Role::kMotion ||
-                              pending.label.role == Role::kObjectPose;
+      const bool wants_pose = InfoOf(pending.label.role)->type == VertexType::kPose;
       if (wants_pose != (vertex->type == VertexType::kPose)) {
         return Error{name_, pending.line,
                      std::string(pending.tag) + " names vertex " + std::to_string(pending.id) +
@@ -686,144 +584,50 @@ class Writer {
   std::string* out_;
 };
 
-template <typename Edge, typename Key>
-std::vector<const Edge*> SortedOfKind(const Graph& graph, const std::vector<Edge>& edges,
-                                      EdgeKind kind, Key key) {
-  std::vector<const Edge*> sorted;
-  for (const Edge& e : edges) {
-    if (KindOf(graph, e) == kind) sorted.push_back(&e);
+// Writes one edge's fields in its struct's order (the reader's mirror). g2o's optional offset
+// parameter id is not written.
+class EdgeFieldWriter : public IgnoreFields {
+ public:
+  explicit EdgeFieldWriter(Writer& w) : w_(w) {}
+  void Vertex(const VertexField&, VertexId id) { w_.Int(id); }
+  void Integer(const char*, int64_t value) { w_.Int(value); }
+  void OptionalFlag(const char*, bool value) { w_.Int(value ? 1 : 0); }
+  void Measurement(const Pose& pose) { w_.PoseFields(pose); }
+  void Measurement(const Eigen::Vector3d& z) {
+    for (int i = 0; i < 3; ++i) w_.Number(z[i]);
   }
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [&](const Edge* a, const Edge* b) { return key(*a) < key(*b); });
-  return sorted;
-}
+  void Information(const Eigen::Matrix3d& m) { w_.Upper3(m); }
+  void Information(const Matrix6d& m) { w_.Upper6(m); }
 
+ private:
+  Writer& w_;
+};
+
+// The edges of `kind`, sorted by their parameter vertex ids in field order (SPEC §3.4).
 void WriteEdges(const Graph& graph, EdgeKind kind, Writer& w) {
-  switch (kind) {
-    case EdgeKind::kPrior:
-    case EdgeKind::kObjectPrior:
-      for (const PriorEdge* e :
-           SortedOfKind(graph, graph.priors, kind, [](const PriorEdge& e) { return e.pose; })) {
-        w.Text("EDGE_SE3_PRIOR");
-        w.Int(e->pose);
-        w.PoseFields(e->measurement);
-        w.Upper6(e->information);
-        w.End();
-      }
-      return;
-    case EdgeKind::kOdometry:
-    case EdgeKind::kSmoothing:
-      for (const BetweenEdge* e : SortedOfKind(graph, graph.betweens, kind, [](const BetweenEdge& e) {
-             return std::pair{e.from, e.to};
-           })) {
-        w.Text("EDGE_SE3:QUAT");
-        w.Int(e->from);
-        w.Int(e->to);
-        w.PoseFields(e->measurement);
-        w.Upper6(e->information);
-        w.End();
-      }
-      return;
-    case EdgeKind::kPoint:
-    case EdgeKind::kDynamicPoint:
-      for (const PointEdge* e : SortedOfKind(graph, graph.point_edges, kind, [](const PointEdge& e) {
-             return std::pair{e.pose, e.point};
-           })) {
-        w.Text("EDGE_SE3_TRACKXYZ");
-        w.Int(e->pose);
-        w.Int(e->point);
-        for (int i = 0; i < 3; ++i) w.Number(e->measurement[i]);
-        w.Upper3(e->information);
-        w.Int(e->is_dynamic ? 1 : 0);
-        w.End();
-      }
-      return;
-    case EdgeKind::kMotion:
-      for (const MotionEdge* e : SortedOfKind(graph, graph.motion_edges, kind, [](const MotionEdge& e) {
-             return std::tuple{e.prev, e.curr, e.motion};
-           })) {
-        w.Text("EDGE_SE3_MOTION");
-        w.Int(e->prev);
-        w.Int(e->curr);
-        w.Int(e->motion);
-        for (int i = 0; i < 3; ++i) w.Number(e->measurement[i]);
-        w.Upper3(e->information);
-        w.Int(e->object);
-        w.Int(e->frame);
-        w.Int(e->camera);
-        w.End();
-      }
-      return;
-    case EdgeKind::kObjectPoint:
-      for (const ObjectPointEdge* e :
-           SortedOfKind(graph, graph.object_point_edges, kind, [](const ObjectPointEdge& e) {
-             return std::tuple{e.camera, e.object_pose, e.point};
-           })) {
-        w.Text("EDGE_SE3_OBJ_TRACKXYZ");
-        w.Int(e->camera);
-        w.Int(e->object_pose);
-        w.Int(e->point);
-        for (int i = 0; i < 3; ++i) w.Number(e->measurement[i]);
-        w.Upper3(e->information);
-        w.End();
-      }
-      return;
-    case EdgeKind::kObjectMotion:
-      for (const ObjectMotionEdge* e :
-           SortedOfKind(graph, graph.object_motion_edges, kind, [](const ObjectMotionEdge& e) {
-             return std::tuple{e.pose_prev, e.pose_curr, e.motion, e.point};
-           })) {
-        w.Text("EDGE_SE3_OBJ_MOTION");
-        w.Int(e->pose_prev);
-        w.Int(e->pose_curr);
-        w.Int(e->motion);
-        w.Int(e->point);
-        w.Upper3(e->information);
-        w.End();
-      }
-      return;
-    case EdgeKind::kKinematic:
-      for (const KinematicEdge* e :
-           SortedOfKind(graph, graph.kinematic_edges, kind, [](const KinematicEdge& e) {
-             return std::tuple{e.pose_prev, e.pose_curr, e.motion};
-           })) {
-        w.Text("EDGE_SE3_OBJ_KINEMATIC");
-        w.Int(e->pose_prev);
-        w.Int(e->pose_curr);
-        w.Int(e->motion);
-        w.Upper6(e->information);
-        w.End();
-      }
-      return;
-  }
+  graph.ForEachEdgeVector([&](const auto& edges) {
+    using Edge = typename std::decay_t<decltype(edges)>::value_type;
+    std::vector<std::pair<std::vector<VertexId>, const Edge*>> sorted;
+    for (const Edge& e : edges) {
+      if (KindOf(graph, e) == kind) sorted.emplace_back(VertexIds(e, true), &e);
+    }
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    EdgeFieldWriter fields(w);
+    for (const auto& [key, e] : sorted) {
+      w.Text(Edge::kTag);
+      Edge::Fields(*e, fields);
+      w.End();
+    }
+  });
 }
 
 void WriteLabel(VertexId id, const Label& label, Writer& w) {
-  switch (label.role) {
-    case Role::kUnknown: return;
-    case Role::kCamera: w.Text("LABEL_CAMERA"); w.Int(id); w.Int(label.frame); break;
-    case Role::kStaticPoint: w.Text("LABEL_STATIC_POINT"); w.Int(id); w.Int(label.tracklet); break;
-    case Role::kDynamicPoint:
-      w.Text("LABEL_DYNAMIC_POINT");
-      w.Int(id);
-      w.Int(label.object);
-      w.Int(label.frame);
-      w.Int(label.tracklet);
-      break;
-    case Role::kMotion: w.Text("LABEL_MOTION"); w.Int(id); w.Int(label.object); w.Int(label.frame); break;
-    case Role::kObjectPose:
-      w.Text("LABEL_OBJECT_POSE");
-      w.Int(id);
-      w.Int(label.object);
-      w.Int(label.frame);
-      break;
-    case Role::kObjectPoint:
-      w.Text("LABEL_OBJECT_POINT");
-      w.Int(id);
-      w.Int(label.object);
-      w.Int(label.tracklet);
-      break;
-  }
+  const RoleInfo* role = InfoOf(label.role);
+  if (role == nullptr) return;
+  w.Text(role->label_tag);
+  w.Int(id);
+  for (int k = 0; k < role->num_fields; ++k) w.Int(label.at(role->fields[k]));
   w.End();
 }
 

@@ -242,7 +242,7 @@ void Simulator::Camera(int64_t k) {
     prior.pose = camera_id_;
     prior.measurement = X_initial_;
     prior.information = PoseInformation(options_.prior_sigma, options_.prior_sigma);
-    out_.graph.priors.push_back(prior);
+    out_.graph.Edges<PriorEdge>().push_back(prior);
     return;
   }
   Pose Z = Compose(Inverse(scene_.cameras[k - 1]), X_);
@@ -258,7 +258,7 @@ void Simulator::Camera(int64_t k) {
   odometry.measurement = Z;
   odometry.information =
       PoseInformation(options_.odometry_rotation_sigma, options_.odometry_translation_sigma);
-  out_.graph.betweens.push_back(odometry);
+  out_.graph.Edges<BetweenEdge>().push_back(odometry);
   ++out_.statistics.odometry_edges;
   out_.statistics.camera_path_length +=
       (scene_.cameras[k].translation() - scene_.cameras[k - 1].translation()).norm();
@@ -320,7 +320,7 @@ void Simulator::StaticPoints(int64_t k) {
     edge.measurement = m.z;
     edge.information = m.information;
     edge.is_dynamic = false;
-    out_.graph.point_edges.push_back(edge);
+    out_.graph.Edges<PointEdge>().push_back(edge);
     ++observations;
   };
   std::vector<StaticTrack> kept;
@@ -413,7 +413,7 @@ void Simulator::DynamicPoints(int64_t k) {
     edge.measurement = m.z;
     edge.information = m.information;
     edge.is_dynamic = true;
-    out_.graph.point_edges.push_back(edge);
+    out_.graph.Edges<PointEdge>().push_back(edge);
     ++out_.statistics.dynamic_observations;
     object_observed_[object_index] = true;
     return id;
@@ -438,7 +438,7 @@ void Simulator::DynamicPoints(int64_t k) {
     edge.object = object.id;
     edge.frame = k;
     edge.camera = camera_id_;
-    out_.graph.motion_edges.push_back(edge);
+    out_.graph.Edges<MotionEdge>().push_back(edge);
     track.last_vertex = id;
     ++dynamic_lengths_[track.length_index];
     kept.push_back(track);
@@ -531,7 +531,7 @@ SimulatedScene Simulator::Run() {
       smoothing.to = b->second;
       smoothing.information = PoseInformation(options_.smoothing_rotation_sigma,
                                               options_.smoothing_translation_sigma);
-      out_.graph.betweens.push_back(smoothing);
+      out_.graph.Edges<BetweenEdge>().push_back(smoothing);
       ++out_.statistics.smoothing_edges;
     }
   }
@@ -551,7 +551,7 @@ SimulatedScene Simulator::Run() {
   s.frames = frames;
   s.dynamic_tracklets = static_cast<int64_t>(dynamic_lengths_.size());
   for (const int64_t length : dynamic_lengths_) s.dynamic_tracklets_of_length_one += length == 1;
-  s.motion_edges = static_cast<int64_t>(out_.graph.motion_edges.size());
+  s.motion_edges = static_cast<int64_t>(out_.graph.Edges<MotionEdge>().size());
   s.vertices = static_cast<int64_t>(out_.graph.vertices.size());
   s.edges = static_cast<int64_t>(out_.graph.NumEdges());
   out_.header = scene_.header;

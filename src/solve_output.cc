@@ -138,14 +138,14 @@ std::string FormulationOf(const Graph& graph, std::string* source) {
     return *graph.formulation;
   }
   *source = "inferred";
-  const bool object_centric = !graph.object_point_edges.empty() ||
-                              !graph.object_motion_edges.empty() || !graph.kinematic_edges.empty();
+  const bool object_centric = !graph.Edges<ObjectPointEdge>().empty() ||
+                              !graph.Edges<ObjectMotionEdge>().empty() || !graph.Edges<KinematicEdge>().empty();
   if (object_centric) {
-    if (graph.object_motion_edges.empty()) return "oc_c";
-    return graph.kinematic_edges.empty() ? "oc_a" : "oc_b";
+    if (graph.Edges<ObjectMotionEdge>().empty()) return "oc_c";
+    return graph.Edges<KinematicEdge>().empty() ? "oc_a" : "oc_b";
   }
-  if (!graph.motion_edges.empty()) return "wc";
-  if (graph.point_edges.empty()) return "pose_graph";
+  if (!graph.Edges<MotionEdge>().empty()) return "wc";
+  if (graph.Edges<PointEdge>().empty()) return "pose_graph";
   return "static";
 }
 
@@ -158,7 +158,7 @@ std::string SummaryJson(const SolveOutputs& outputs) {
   int64_t total_variables = 0;
   for (size_t r = 0; r < kAllRoles.size(); ++r) {
     variables[RoleName(kAllRoles[r])] = report.variables_by_role[r];
-    total_variables += report.variables_by_role[r];
+    if (!InfoOf(kAllRoles[r])->constant) total_variables += report.variables_by_role[r];
   }
   variables["unused"] = report.unused_variables;
   variables["total"] = total_variables;

@@ -13,17 +13,9 @@
 
 #include <ceres/ceres.h>
 
-#include "cost_functions/object_kinematic_error.h"
-#include "cost_functions/object_point_measurement_error.h"
-#include "cost_functions/object_point_motion_error.h"
-#include "cost_functions/object_point_motion_error_dsc.h"
-#include "cost_functions/point_measurement_error.h"
-#include "cost_functions/point_motion_error.h"
-#include "cost_functions/point_motion_error_dsc.h"
-#include "cost_functions/pose_between_error.h"
-#include "cost_functions/pose_prior_error.h"
 #include "cost_functions/world_anchored_object_point.h"
 #include "dynslam/se3_manifold.h"
+#include "src/edge_costs.h"
 #include "src/openmp_thread_cap.h"
 
 namespace dynslam {
@@ -111,7 +103,7 @@ class Assembly {
     bool eliminated_first;
   };
   std::vector<Variable> Variables(bool eliminate_object_points);
-  // SPEC §1.7 --fix-first: holds the smallest-id pose that is in the problem constant.
+  // SPEC §1.7 --fix-first: holds the smallest-id pose that is a variable of the problem constant.
   std::optional<VertexId> HoldFirstPoseConstant();
 
  private:
@@ -121,13 +113,20 @@ class Assembly {
   // Adds a residual of `kind` over `ids` (in that order); refuses an edge that names one vertex
   // twice (Ceres would abort on it).
   Status Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::CostFunction* cost,
-             std::initializer_list<VertexId> ids);
+             const std::vector<VertexId>& ids);
+  // An edge's residual from the table (src/edge_costs.h); object-frame points may be anchored.
+  template <typename Edge>
+  Status AddEdge(const Graph& graph, const Edge& e, const SolverOptions& options) {
+    return Add(graph, KindOf(graph, e), e.line, MakeCost(e, options), VertexIds(e, true));
+  }
+  Status AddEdge(const Graph& graph, const ObjectPointEdge& e, const SolverOptions& options);
+  Status AddEdge(const Graph& graph, const ObjectMotionEdge& e, const SolverOptions& options);
 
   // SolverOptions::world_anchored_object_points: each object-frame point's anchor pose, chosen
   // before any residual is added; its block then holds w = L_a · m_L (WriteBack undoes it).
   void AnchorObjectPoints(const Graph& graph);
-  Status AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e);
-  Status AddObjectMotionEdge(const Graph& graph, const ObjectMotionEdge& e, bool dsc);
+  // Records the points of a residual that joins two or more (for the Schur ordering).
+  void NoteJoinedPoints(const Graph& graph, const std::vector<VertexId>& ids);
 
   std::unordered_map<VertexId, VertexId> anchor_;  // object-frame point → its anchor pose
   std::unordered_map<VertexId, size_t> index_;
@@ -146,7 +145,7 @@ class Assembly {
 };
 
 Status Assembly::Add(const Graph& graph, EdgeKind kind, int64_t line, ceres::CostFunction* cost,
-                     std::initializer_list<VertexId> ids) {
+                     const std::vector<VertexId>& ids) {
   std::unique_ptr<ceres::CostFunction> owned(cost);
   std::vector<double*> blocks;
   for (const VertexId id : ids) {
@@ -184,46 +183,14 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   a->problem_ = std::make_unique<ceres::Problem>(problem_options);
 
-  Status status;
-  auto add = [&](EdgeKind kind, int64_t line, ceres::CostFunction* cost,
-                 std::initializer_list<VertexId> ids) {
-    if (status.ok()) {
-      status = a->Add(graph, kind, line, cost, ids);
-    } else {
-      delete cost;
-    }
-  };
-  for (const PriorEdge& e : graph.priors) {
-    add(KindOf(graph, e), e.line, PosePriorError::Create(e.measurement, e.information), {e.pose});
-  }
-  for (const BetweenEdge& e : graph.betweens) {
-    add(KindOf(graph, e), e.line, PoseBetweenError::Create(e.measurement, e.information),
-        {e.from, e.to});
-  }
-  for (const PointEdge& e : graph.point_edges) {
-    add(KindOf(graph, e), e.line, PointMeasurementError::Create(e.measurement, e.information),
-        {e.pose, e.point});
-  }
-  for (const MotionEdge& e : graph.motion_edges) {
-    add(EdgeKind::kMotion, e.line,
-        options.dsc_motion_residual ? PointMotionErrorDsc::Create(options.dsc_motion_sigma)
-                                    : PointMotionError::Create(e.measurement, e.information),
-        {e.prev, e.curr, e.motion});
-    a->joined_points_.insert(e.prev);
-    a->joined_points_.insert(e.curr);
-  }
   if (options.world_anchored_object_points) a->AnchorObjectPoints(graph);
-  for (const ObjectPointEdge& e : graph.object_point_edges) {
-    if (status.ok()) status = a->AddObjectPointEdge(graph, e);
-  }
-  for (const ObjectMotionEdge& e : graph.object_motion_edges) {
-    if (status.ok()) status = a->AddObjectMotionEdge(graph, e, options.dsc_object_motion_residual);
-  }
-  for (const KinematicEdge& e : graph.kinematic_edges) {
-    add(EdgeKind::kKinematic, e.line,
-        ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual),
-        {e.pose_prev, e.pose_curr, e.motion});
-  }
+  Status status;
+  graph.ForEachEdgeVector([&](const auto& edges) {
+    for (const auto& e : edges) {
+      if (status.ok()) status = a->AddEdge(graph, e, options);
+      a->NoteJoinedPoints(graph, VertexIds(e, true));
+    }
+  });
   if (!status.ok()) return status.error();
 
   for (size_t i = 0; i < a->values_.size(); ++i) {
@@ -233,13 +200,18 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
     } else if (a->types_[i] == VertexType::kPose) {
       a->problem_->SetManifold(block, &a->manifold_);
     }
+    const RoleInfo* role = InfoOf(a->roles_[i]);
+    if (role != nullptr && role->constant && a->problem_->HasParameterBlock(block)) {
+      a->problem_->SetParameterBlockConstant(block);
+    }
   }
   return a;
 }
 
 std::optional<VertexId> Assembly::HoldFirstPoseConstant() {
   for (size_t i = 0; i < values_.size(); ++i) {
-    if (types_[i] == VertexType::kPose && problem_->HasParameterBlock(values_[i].data())) {
+    if (types_[i] == VertexType::kPose && problem_->HasParameterBlock(values_[i].data()) &&
+        !problem_->IsParameterBlockConstant(values_[i].data())) {
       problem_->SetParameterBlockConstant(values_[i].data());
       return ids_[i];
     }
@@ -280,8 +252,8 @@ void Assembly::AnchorObjectPoints(const Graph& graph) {
     auto [it, inserted] = anchor_.emplace(point, pose);
     if (!inserted) it->second = std::min(it->second, pose);
   };
-  for (const ObjectPointEdge& e : graph.object_point_edges) consider(e.point, e.object_pose);
-  for (const ObjectMotionEdge& e : graph.object_motion_edges) {
+  for (const ObjectPointEdge& e : graph.Edges<ObjectPointEdge>()) consider(e.point, e.object_pose);
+  for (const ObjectMotionEdge& e : graph.Edges<ObjectMotionEdge>()) {
     consider(e.point, e.pose_prev);
     consider(e.point, e.pose_curr);
   }
@@ -299,12 +271,20 @@ void Assembly::AnchorObjectPoints(const Graph& graph) {
   }
 }
 
-Status Assembly::AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e) {
+void Assembly::NoteJoinedPoints(const Graph& graph, const std::vector<VertexId>& ids) {
+  std::vector<VertexId> points;
+  for (const VertexId id : ids) {
+    const Vertex* vertex = graph.Find(id);
+    if (vertex != nullptr && vertex->type == VertexType::kPoint) points.push_back(id);
+  }
+  if (points.size() >= 2) joined_points_.insert(points.begin(), points.end());
+}
+
+Status Assembly::AddEdge(const Graph& graph, const ObjectPointEdge& e,
+                         const SolverOptions& options) {
   auto anchor = anchor_.find(e.point);
   if (anchor == anchor_.end()) {
-    return Add(graph, EdgeKind::kObjectPoint, e.line,
-               ObjectPointMeasurementError::Create(e.measurement, e.information),
-               {e.camera, e.object_pose, e.point});
+    return Add(graph, EdgeKind::kObjectPoint, e.line, MakeCost(e, options), VertexIds(e, true));
   }
   if (anchor->second == e.object_pose) {  // X⁻¹ · L_a · L_a⁻¹ · w = X⁻¹ · w
     return Add(graph, EdgeKind::kObjectPoint, e.line,
@@ -316,15 +296,15 @@ Status Assembly::AddObjectPointEdge(const Graph& graph, const ObjectPointEdge& e
              {e.camera, e.object_pose, anchor->second, e.point});
 }
 
-Status Assembly::AddObjectMotionEdge(const Graph& graph, const ObjectMotionEdge& e, bool dsc) {
+Status Assembly::AddEdge(const Graph& graph, const ObjectMotionEdge& e,
+                         const SolverOptions& options) {
+  auto anchor = anchor_.find(e.point);
+  if (anchor == anchor_.end()) {
+    return Add(graph, EdgeKind::kObjectMotion, e.line, MakeCost(e, options), VertexIds(e, true));
+  }
   auto add = [&](auto residual) {
     using Anchored = WorldAnchored<decltype(residual), 3, 3>;
-    auto anchor = anchor_.find(e.point);
-    std::initializer_list<VertexId> own = {e.pose_prev, e.pose_curr, e.motion, e.point};
-    if (anchor == anchor_.end()) {
-      return Add(graph, EdgeKind::kObjectMotion, e.line, decltype(residual)::Create(e.information),
-                 own);
-    }
+    const std::vector<VertexId> own = VertexIds(e, true);
     if (anchor->second == e.pose_prev) {
       return Add(graph, EdgeKind::kObjectMotion, e.line,
                  Anchored::template AtOwnPose<0>(residual), own);
@@ -336,8 +316,8 @@ Status Assembly::AddObjectMotionEdge(const Graph& graph, const ObjectMotionEdge&
     return Add(graph, EdgeKind::kObjectMotion, e.line, Anchored::AtFurtherPose(residual),
                {e.pose_prev, e.pose_curr, e.motion, anchor->second, e.point});
   };
-  return dsc ? add(ObjectPointMotionErrorDsc(e.information))
-             : add(ObjectPointMotionError(e.information));
+  return options.dsc_object_motion_residual ? add(ObjectPointMotionErrorDsc(e.information))
+                                            : add(ObjectPointMotionError(e.information));
 }
 
 void Assembly::WriteBack(Graph* graph) const {
@@ -559,9 +539,9 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
   // shrank until the function tolerance stopped it 1.1e-5 above LM's optimum
   // (docs/CONVERGENCE.md).
   if (resolved.minimizer == MinimizerType::kAuto) {
-    const bool object_centric = !graph.object_point_edges.empty() ||
-                                !graph.object_motion_edges.empty() ||
-                                !graph.kinematic_edges.empty();
+    const bool object_centric = !graph.Edges<ObjectPointEdge>().empty() ||
+                                !graph.Edges<ObjectMotionEdge>().empty() ||
+                                !graph.Edges<KinematicEdge>().empty();
     resolved.minimizer = has_points && !object_centric ? MinimizerType::kDogleg
                                                        : MinimizerType::kLevenbergMarquardt;
   }
@@ -589,7 +569,7 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
   if (resolved.nonmonotonic_steps == -1) {
     resolved.nonmonotonic_steps =
-        graph.kinematic_edges.empty() || resolved.world_frame_kinematic_residual ? 0 : 5;
+        graph.Edges<KinematicEdge>().empty() || resolved.world_frame_kinematic_residual ? 0 : 5;
   }
   return resolved;
 }
@@ -636,7 +616,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   const SolverOptions options = ResolveAuto(requested, *graph);
   if (Status status = CheckOptions(options); !status.ok()) return status.error();
   if (graph->NumEdges() == 0) return Error{"", 0, "the graph has no edges: there is nothing to solve"};
-  if (graph->priors.empty() && !options.fix_first) {
+  if (graph->Edges<PriorEdge>().empty() && !options.fix_first) {
     return Error{"", 0,
                  "the graph has no EDGE_SE3_PRIOR, so it is determined only up to a rigid motion "
                  "(gauge freedom, SPEC §1.7); add a prior or pass --fix-first to hold the "

@@ -104,7 +104,7 @@ void ReshapeObject(SimulatedScene* sim, const std::function<Eigen::Vector3d(int6
     ASSERT_NE(object, nullptr);
     vertex.point() = Transform(*object, layout(vertex.label.tracklet));
   }
-  for (PointEdge& edge : graph.point_edges) {
+  for (PointEdge& edge : graph.Edges<PointEdge>()) {
     const Vertex& point = *graph.Find(edge.point);
     if (point.label.role != Role::kDynamicPoint || point.label.object != kObject) continue;
     const Pose camera{sim->true_values.at(edge.pose)};
@@ -117,7 +117,7 @@ void ReshapeObject(SimulatedScene* sim, const std::function<Eigen::Vector3d(int6
 void MoveMeasurements(SimulatedScene* sim, int64_t frame,
                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& measurement) {
   Graph& graph = sim->graph;
-  for (PointEdge& edge : graph.point_edges) {
+  for (PointEdge& edge : graph.Edges<PointEdge>()) {
     Vertex& point = *graph.Find(edge.point);
     if (point.label.role != Role::kDynamicPoint || point.label.object != kObject ||
         point.label.frame != frame) {
@@ -193,7 +193,7 @@ TEST(DegenerateGeometry, ObjectSeenInOneFrameOnly) {
 
 void ScaleDynamicPointInformation(double scale) {
   SimulatedScene sim = SyntheticScene();
-  for (PointEdge& edge : sim.graph.point_edges) {
+  for (PointEdge& edge : sim.graph.Edges<PointEdge>()) {
     if (edge.is_dynamic) edge.information *= scale;
   }
   char name[80];
@@ -206,8 +206,8 @@ TEST(DegenerateGeometry, HugeInformation) { ScaleDynamicPointInformation(1e12); 
 
 TEST(DegenerateGeometry, CameraPriorFarFromTheOdometry) {
   SimulatedScene sim = SyntheticScene();
-  ASSERT_EQ(sim.graph.priors.size(), 1u);
-  Pose& prior = sim.graph.priors[0].measurement;
+  ASSERT_EQ(sim.graph.Edges<PriorEdge>().size(), 1u);
+  Pose& prior = sim.graph.Edges<PriorEdge>()[0].measurement;
   prior = Compose(Exp((Vector6d() << 0, 0, 0, 1000, 0, 0).finished()), prior);
   SolveEveryFormulation("the camera prior 1 km from where the odometry starts", sim.graph,
                         sim.ground_truth);

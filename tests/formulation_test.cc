@@ -31,15 +31,15 @@ std::array<EdgeSet, kNumEdgeKinds> EdgesByKind(const Graph& g) {
   auto add = [&](EdgeKind kind, std::vector<VertexId> ids) {
     edges[static_cast<int>(kind)].insert(std::move(ids));
   };
-  for (const auto& e : g.priors) add(KindOf(g, e), {e.pose});
-  for (const auto& e : g.betweens) add(KindOf(g, e), {e.from, e.to});
-  for (const auto& e : g.point_edges) add(KindOf(g, e), {e.pose, e.point});
-  for (const auto& e : g.motion_edges) add(EdgeKind::kMotion, {e.prev, e.curr, e.motion, e.camera});
-  for (const auto& e : g.object_point_edges) add(EdgeKind::kObjectPoint, {e.camera, e.object_pose, e.point});
-  for (const auto& e : g.object_motion_edges) {
+  for (const auto& e : g.Edges<PriorEdge>()) add(KindOf(g, e), {e.pose});
+  for (const auto& e : g.Edges<BetweenEdge>()) add(KindOf(g, e), {e.from, e.to});
+  for (const auto& e : g.Edges<PointEdge>()) add(KindOf(g, e), {e.pose, e.point});
+  for (const auto& e : g.Edges<MotionEdge>()) add(EdgeKind::kMotion, {e.prev, e.curr, e.motion, e.camera});
+  for (const auto& e : g.Edges<ObjectPointEdge>()) add(EdgeKind::kObjectPoint, {e.camera, e.object_pose, e.point});
+  for (const auto& e : g.Edges<ObjectMotionEdge>()) {
     add(EdgeKind::kObjectMotion, {e.pose_prev, e.pose_curr, e.motion, e.point});
   }
-  for (const auto& e : g.kinematic_edges) add(EdgeKind::kKinematic, {e.pose_prev, e.pose_curr, e.motion});
+  for (const auto& e : g.Edges<KinematicEdge>()) add(EdgeKind::kKinematic, {e.pose_prev, e.pose_curr, e.motion});
   return edges;
 }
 
@@ -75,38 +75,38 @@ EdgeValues ValuesOfEdges(const Graph& g) {
   auto add = [&](EdgeKind kind, std::vector<VertexId> ids) -> std::vector<double>& {
     return values[{static_cast<int>(kind), std::move(ids)}];
   };
-  for (const auto& e : g.priors) {
+  for (const auto& e : g.Edges<PriorEdge>()) {
     std::vector<double>& v = add(KindOf(g, e), {e.pose});
     pose(e.measurement, &v);
     matrix(e.information, &v);
   }
-  for (const auto& e : g.betweens) {
+  for (const auto& e : g.Edges<BetweenEdge>()) {
     std::vector<double>& v = add(KindOf(g, e), {e.from, e.to});
     pose(e.measurement, &v);
     matrix(e.information, &v);
   }
-  for (const auto& e : g.point_edges) {
+  for (const auto& e : g.Edges<PointEdge>()) {
     std::vector<double>& v = add(KindOf(g, e), {e.pose, e.point});
     point(e.measurement, &v);
     matrix(e.information, &v);
     v.push_back(e.is_dynamic);
   }
-  for (const auto& e : g.motion_edges) {
+  for (const auto& e : g.Edges<MotionEdge>()) {
     std::vector<double>& v = add(EdgeKind::kMotion, {e.prev, e.curr, e.motion, e.camera});
     point(e.measurement, &v);
     matrix(e.information, &v);
     v.push_back(static_cast<double>(e.object));
     v.push_back(static_cast<double>(e.frame));
   }
-  for (const auto& e : g.object_point_edges) {
+  for (const auto& e : g.Edges<ObjectPointEdge>()) {
     std::vector<double>& v = add(EdgeKind::kObjectPoint, {e.camera, e.object_pose, e.point});
     point(e.measurement, &v);
     matrix(e.information, &v);
   }
-  for (const auto& e : g.object_motion_edges) {
+  for (const auto& e : g.Edges<ObjectMotionEdge>()) {
     matrix(e.information, &add(EdgeKind::kObjectMotion, {e.pose_prev, e.pose_curr, e.motion, e.point}));
   }
-  for (const auto& e : g.kinematic_edges) {
+  for (const auto& e : g.Edges<KinematicEdge>()) {
     matrix(e.information, &add(EdgeKind::kKinematic, {e.pose_prev, e.pose_curr, e.motion}));
   }
   return values;
@@ -375,22 +375,22 @@ TEST(FormulationCompatTest, ReleasedCodeObjectCentricChoices) {
   Expected<Graph> built = BuildFormulation(*front_end, Formulation::kObjectCentricA, options, &*gt, nullptr);
   ASSERT_TRUE(built.ok()) << built.error().ToString();
   const PointEdge* first_dynamic = nullptr;
-  for (const PointEdge& e : front_end->point_edges) {
+  for (const PointEdge& e : front_end->Edges<PointEdge>()) {
     if (e.is_dynamic && first_dynamic == nullptr) first_dynamic = &e;
   }
-  for (const ObjectPointEdge& e : built->object_point_edges) {
+  for (const ObjectPointEdge& e : built->Edges<ObjectPointEdge>()) {
     ASSERT_EQ(e.information, first_dynamic->information);
   }
-  for (const PointEdge& e : built->point_edges) {
-    ASSERT_EQ(e.information, built->point_edges.front().information);
+  for (const PointEdge& e : built->Edges<PointEdge>()) {
+    ASSERT_EQ(e.information, built->Edges<PointEdge>().front().information);
   }
-  for (const ObjectMotionEdge& e : built->object_motion_edges) {
+  for (const ObjectMotionEdge& e : built->Edges<ObjectMotionEdge>()) {
     ASSERT_LT((e.information - Eigen::Matrix3d::Identity() * 25.0).norm(), 1e-12);  // 1/0.2²
   }
   for (const auto& [id, vertex] : built->vertices) {
     if (vertex.label.role == Role::kMotion) ASSERT_EQ(vertex.pose(), Pose::Identity()) << id;
   }
-  for (const PriorEdge& e : built->priors) {
+  for (const PriorEdge& e : built->Edges<PriorEdge>()) {
     const Label& label = built->Find(e.pose)->label;
     if (label.role != Role::kObjectPose) continue;
     EXPECT_EQ(e.measurement.rotation().coeffs(), Eigen::Quaterniond::Identity().coeffs());
@@ -523,13 +523,13 @@ TEST(FormulationEdgeCaseTest, SyntheticSceneSegmentsWithExactCounts) {
             (std::map<int64_t, std::set<int64_t>>{{1, range(1, 29)}, {2, object2_motions}, {4, object4_motions}}));
   // One object prior per segment, on its first pose: object 1 at 0, 2 at 0 and 19, 4 at 0 and 15.
   std::set<std::pair<int64_t, int64_t>> prior_on;
-  for (const PriorEdge& e : oc_b->priors) {
+  for (const PriorEdge& e : oc_b->Edges<PriorEdge>()) {
     if (labels[e.pose].role == Role::kObjectPose) prior_on.insert({labels[e.pose].object, labels[e.pose].frame});
   }
   EXPECT_EQ(prior_on, (std::set<std::pair<int64_t, int64_t>>{{1, 0}, {2, 0}, {2, 19}, {4, 0}, {4, 15}}));
   // One kinematic edge per motion; none joins frames 14 and 15 of object 4.
-  EXPECT_EQ(oc_b->kinematic_edges.size(), 77u);
-  for (const KinematicEdge& e : oc_b->kinematic_edges) {
+  EXPECT_EQ(oc_b->Edges<KinematicEdge>().size(), 77u);
+  for (const KinematicEdge& e : oc_b->Edges<KinematicEdge>()) {
     EXPECT_EQ(labels[e.pose_curr].frame, labels[e.pose_prev].frame + 1);
     EXPECT_EQ(labels[e.motion].frame, labels[e.pose_curr].frame);
     EXPECT_EQ(labels[e.motion].object, labels[e.pose_curr].object);
@@ -572,8 +572,8 @@ std::pair<double, double> Difference(const Pose& a, const Pose& b) {
 TEST_F(ObjectInitTest, MotionIsTheDefaultAndChainsTheInitialMotions) {
   EXPECT_EQ(BuildOptions{}.object_init, ObjectInit::kMotion);
   const Graph g = Build(ObjectInit::kMotion);
-  ASSERT_EQ(g.kinematic_edges.size(), 77u);
-  for (const KinematicEdge& e : g.kinematic_edges) {
+  ASSERT_EQ(g.Edges<KinematicEdge>().size(), 77u);
+  for (const KinematicEdge& e : g.Edges<KinematicEdge>()) {
     const Pose chained = Compose(g.Find(e.motion)->pose(), g.Find(e.pose_prev)->pose());
     const auto [rotation, translation] = Difference(chained, g.Find(e.pose_curr)->pose());
     EXPECT_LT(rotation, 1e-12) << "pose " << e.pose_curr;
@@ -612,7 +612,7 @@ TEST_F(ObjectInitTest, RulesDifferOnlyAfterASegmentsFirstFrame) {
   int later_frames_that_differ = 0;
   for (const auto& [id, v] : motion.vertices) {
     if (v.label.role != Role::kObjectPose) continue;
-    const bool first = std::any_of(motion.priors.begin(), motion.priors.end(),
+    const bool first = std::any_of(motion.Edges<PriorEdge>().begin(), motion.Edges<PriorEdge>().end(),
                                    [&](const PriorEdge& e) { return e.pose == id; });
     for (const Graph* other : {&align, &truth}) {
       const auto [rotation, translation] = Difference(v.pose(), other->Find(id)->pose());

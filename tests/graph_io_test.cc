@@ -78,7 +78,7 @@ TEST(GraphIoTest, ReadsEveryFrontEndTagAndInfersRoles) {
   EXPECT_EQ(counts[static_cast<int>(EdgeKind::kPoint)], 1);
   EXPECT_EQ(counts[static_cast<int>(EdgeKind::kDynamicPoint)], 2);
   EXPECT_EQ(counts[static_cast<int>(EdgeKind::kMotion)], 1);
-  EXPECT_EQ(graph->motion_edges[0].camera, 1);
+  EXPECT_EQ(graph->Edges<MotionEdge>()[0].camera, 1);
   EXPECT_TRUE(UnusedVertices(*graph).empty());
 }
 
@@ -90,7 +90,7 @@ TEST(GraphIoTest, PermutesSixBySixInformationOnceToTangentOrder) {
   Expected<Graph> graph =
       ReadText(kPose0 + kPose1 + "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1" + kI21 + "\nEDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1" + info + "\n");
   ASSERT_TRUE(graph.ok()) << graph.error().ToString();
-  const Matrix6d& m = graph->betweens[0].information;
+  const Matrix6d& m = graph->Edges<BetweenEdge>()[0].information;
   EXPECT_EQ(m.diagonal(), (Vector6d() << 4, 5, 6, 1, 2, 3).finished());
   EXPECT_EQ(m(3, 1), 0.5);
   EXPECT_EQ(m(1, 3), 0.5);
@@ -108,7 +108,7 @@ TEST(GraphIoTest, CompatReadsInformationWithoutPermutation) {
   options.information_in_tangent_order = true;
   Expected<Graph> graph = ReadText(kPose0 + "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1 0 0 0 0 0 2 0 0 0 0 3 0 0 0 4 0 0 5 0 6\n", options);
   ASSERT_TRUE(graph.ok()) << graph.error().ToString();
-  EXPECT_EQ(graph->priors[0].information.diagonal(), (Vector6d() << 1, 2, 3, 4, 5, 6).finished());
+  EXPECT_EQ(graph->Edges<PriorEdge>()[0].information.diagonal(), (Vector6d() << 1, 2, 3, 4, 5, 6).finished());
 }
 
 TEST(GraphIoTest, NormalisesQuaternionsOffByMoreThan1e12Only) {
@@ -126,10 +126,10 @@ TEST(GraphIoTest, AcceptsBothPriorFormsCrlfTabsAndComments) {
       "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 0 1" + kI21 + "\r\n"
       "EDGE_SE3_PRIOR 1 1 0 0 0 0 0 1" + kI21 + "\r\n");
   ASSERT_TRUE(graph.ok()) << graph.error().ToString();
-  ASSERT_EQ(graph->priors.size(), 2u);
-  EXPECT_TRUE(graph->priors[0].has_parameter_id);
-  EXPECT_FALSE(graph->priors[1].has_parameter_id);
-  EXPECT_EQ(graph->priors[1].measurement.translation().x(), 1.0);
+  ASSERT_EQ(graph->Edges<PriorEdge>().size(), 2u);
+  EXPECT_TRUE(graph->Edges<PriorEdge>()[0].has_parameter_id);
+  EXPECT_FALSE(graph->Edges<PriorEdge>()[1].has_parameter_id);
+  EXPECT_EQ(graph->Edges<PriorEdge>()[1].measurement.translation().x(), 1.0);
 }
 
 TEST(GraphIoTest, SkipsAndCountsUnknownTagsOnlyWhenAsked) {
@@ -159,8 +159,8 @@ TEST(GraphIoTest, RoundTripIsBitExact) {
                              sizeof(vertex.value)))
         << "vertex " << id;
   }
-  EXPECT_EQ(first->betweens[0].information, second->betweens[0].information);
-  EXPECT_EQ(first->motion_edges[0].camera, second->motion_edges[0].camera);
+  EXPECT_EQ(first->Edges<BetweenEdge>()[0].information, second->Edges<BetweenEdge>()[0].information);
+  EXPECT_EQ(first->Edges<MotionEdge>()[0].camera, second->Edges<MotionEdge>()[0].camera);
 }
 
 // --- SPEC §1.6, one test per class ---
@@ -304,15 +304,15 @@ TEST(GraphIoBadInputTest, RepairInformationClampsEigenvaluesAndReportsTheLines) 
   Expected<Graph> graph = ReadGraph(in, "repair.g2o", options, &report);
   ASSERT_TRUE(graph.ok()) << graph.error().ToString();
   EXPECT_EQ(report.repaired_information_lines, (std::vector<int64_t>{3, 4}));
-  ASSERT_EQ(graph->point_edges.size(), 3u);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> rank_one(graph->point_edges[0].information);
+  ASSERT_EQ(graph->Edges<PointEdge>().size(), 3u);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> rank_one(graph->Edges<PointEdge>()[0].information);
   EXPECT_NEAR(rank_one.eigenvalues()(2), 1.49, 1e-12);
   EXPECT_NEAR(rank_one.eigenvalues()(0), 1.49e-9, 1e-15);
-  EXPECT_NEAR(graph->point_edges[0].information(1, 2), 0.7, 1e-9);
-  const Eigen::Matrix3d& indefinite = graph->point_edges[1].information;
+  EXPECT_NEAR(graph->Edges<PointEdge>()[0].information(1, 2), 0.7, 1e-9);
+  const Eigen::Matrix3d& indefinite = graph->Edges<PointEdge>()[1].information;
   EXPECT_NEAR(indefinite(1, 1), 1e-9, 1e-15);
   EXPECT_NEAR(indefinite(0, 0), 1.0, 1e-12);
-  EXPECT_EQ(graph->point_edges[2].information, Eigen::Matrix3d::Identity());  // untouched
+  EXPECT_EQ(graph->Edges<PointEdge>()[2].information, Eigen::Matrix3d::Identity());  // untouched
 
   std::istringstream zero(kPose0 + "VERTEX_TRACKXYZ 1 0 0 1\nEDGE_SE3_TRACKXYZ 0 1 0 0 1 0 0 0 0 0 0\n");
   Expected<Graph> bad = ReadGraph(zero, "zero.g2o", options);
@@ -416,8 +416,8 @@ TEST(GraphIoTest, InfersObjectCentricRolesAndKinds) {
       /*prior*/ 1, /*odometry*/ 1, /*smoothing*/ 1, /*point*/ 0, /*dynamic_point*/ 0,
       /*motion*/ 0, /*object_point*/ 2, /*object_motion*/ 1, /*kinematic*/ 2, /*object_prior*/ 1};
   EXPECT_EQ(CountEdgesByKind(*graph), expected_kinds);
-  EXPECT_EQ(KindOf(*graph, graph->priors[1]), EdgeKind::kObjectPrior);
-  EXPECT_EQ(KindOf(*graph, graph->betweens[1]), EdgeKind::kSmoothing);
+  EXPECT_EQ(KindOf(*graph, graph->Edges<PriorEdge>()[1]), EdgeKind::kObjectPrior);
+  EXPECT_EQ(KindOf(*graph, graph->Edges<BetweenEdge>()[1]), EdgeKind::kSmoothing);
 }
 
 TEST(GraphIoTest, UnusedVerticesCountTheMotionEdgeCameraAsAUse) {
@@ -428,7 +428,7 @@ TEST(GraphIoTest, UnusedVerticesCountTheMotionEdgeCameraAsAUse) {
   edge.curr = 2;
   edge.motion = 3;
   edge.camera = 4;
-  graph.motion_edges.push_back(edge);
+  graph.Edges<MotionEdge>().push_back(edge);
   EXPECT_EQ(UnusedVertices(graph), (std::vector<VertexId>{0, 9}));
 }
 
@@ -495,11 +495,11 @@ TEST(GraphIoTest, RoundTripKeepsEveryEdgeDoubleBitExact) {
   }
   EXPECT_TRUE(std::signbit(second->Find(0)->value[4]));  // -0 stays -0
   EXPECT_EQ(second->Find(0)->value[5], 1e-310);          // subnormal kept
-  EXPECT_TRUE(same_bits(first->priors[0].measurement.data, second->priors[0].measurement.data));
-  EXPECT_TRUE(same_bits(first->priors[0].information, second->priors[0].information));
-  EXPECT_TRUE(same_bits(first->betweens[0].measurement.data, second->betweens[0].measurement.data));
-  EXPECT_TRUE(same_bits(first->betweens[0].information, second->betweens[0].information));
-  EXPECT_FALSE(second->priors[0].has_parameter_id);
+  EXPECT_TRUE(same_bits(first->Edges<PriorEdge>()[0].measurement.data, second->Edges<PriorEdge>()[0].measurement.data));
+  EXPECT_TRUE(same_bits(first->Edges<PriorEdge>()[0].information, second->Edges<PriorEdge>()[0].information));
+  EXPECT_TRUE(same_bits(first->Edges<BetweenEdge>()[0].measurement.data, second->Edges<BetweenEdge>()[0].measurement.data));
+  EXPECT_TRUE(same_bits(first->Edges<BetweenEdge>()[0].information, second->Edges<BetweenEdge>()[0].information));
+  EXPECT_FALSE(second->Edges<PriorEdge>()[0].has_parameter_id);
 }
 
 TEST(GraphIoTest, FailedWriteKeepsTheExistingFile) {
@@ -653,7 +653,7 @@ TEST_P(ReferenceFrontEndIoTest, UnlabelledInfersTheLabels) {
   ASSERT_TRUE(inferred.ok()) << inferred.error().ToString();
   ASSERT_FALSE(inferred->labelled);
   std::set<VertexId> in_motion_edge;
-  for (const MotionEdge& e : labelled->motion_edges) in_motion_edge.insert({e.prev, e.curr});
+  for (const MotionEdge& e : labelled->Edges<MotionEdge>()) in_motion_edge.insert({e.prev, e.curr});
   for (const auto& [id, vertex] : labelled->vertices) {
     const Label& want = vertex.label;
     const Label& got = inferred->Find(id)->label;

@@ -72,14 +72,14 @@ inline int ResidualsInGtsamNearPiBranch(const Graph& graph) {
   const double near_pi_angle = M_PI - std::acos(1 - 0.5e-3);
   auto near_pi = [&](const Pose& error) { return RotationAngle(error) > near_pi_angle; };
   int count = 0;
-  for (const PriorEdge& e : graph.priors) {
+  for (const PriorEdge& e : graph.Edges<PriorEdge>()) {
     count += near_pi(Compose(Inverse(e.measurement), graph.Find(e.pose)->pose()));
   }
-  for (const BetweenEdge& e : graph.betweens) {
+  for (const BetweenEdge& e : graph.Edges<BetweenEdge>()) {
     count += near_pi(Compose(Inverse(e.measurement),
                              Compose(Inverse(graph.Find(e.from)->pose()), graph.Find(e.to)->pose())));
   }
-  for (const KinematicEdge& e : graph.kinematic_edges) {
+  for (const KinematicEdge& e : graph.Edges<KinematicEdge>()) {
     count += near_pi(Compose(Inverse(graph.Find(e.pose_curr)->pose()),
                              Compose(graph.Find(e.motion)->pose(), graph.Find(e.pose_prev)->pose())));
   }

@@ -61,19 +61,19 @@ struct MaxResiduals {
 };
 MaxResiduals Residuals(const Graph& graph, const Values& v) {
   MaxResiduals r;
-  for (const PriorEdge& e : graph.priors) {
+  for (const PriorEdge& e : graph.Edges<PriorEdge>()) {
     r.prior = std::max(r.prior, Deviation(e.measurement.ToIsometry().inverse() * Iso(v.at(e.pose))));
   }
-  for (const BetweenEdge& e : graph.betweens) {
+  for (const BetweenEdge& e : graph.Edges<BetweenEdge>()) {
     if (graph.vertices.at(e.from).label.role != Role::kCamera) continue;
     r.odometry = std::max(r.odometry, Deviation(e.measurement.ToIsometry().inverse() *
                                                 Iso(v.at(e.from)).inverse() * Iso(v.at(e.to))));
   }
-  for (const PointEdge& e : graph.point_edges) {
+  for (const PointEdge& e : graph.Edges<PointEdge>()) {
     r.point = std::max(
         r.point, (Iso(v.at(e.pose)).inverse() * Point(v.at(e.point)) - e.measurement).norm());
   }
-  for (const MotionEdge& e : graph.motion_edges) {
+  for (const MotionEdge& e : graph.Edges<MotionEdge>()) {
     r.motion = std::max(r.motion, (Point(v.at(e.curr)) - Iso(v.at(e.motion)) * Point(v.at(e.prev)) -
                                    e.measurement).norm());
   }
@@ -87,14 +87,14 @@ std::pair<double, int64_t> ChiSquared(const Graph& graph, const Values& v, bool 
   double chi2 = 0;
   int64_t dof = 0;
   if (points) {
-    for (const PointEdge& e : graph.point_edges) {
+    for (const PointEdge& e : graph.Edges<PointEdge>()) {
       const Eigen::Vector3d r = Iso(v.at(e.pose)).inverse() * Point(v.at(e.point)) - e.measurement;
       chi2 += r.dot(e.information * r);
       dof += 3;
     }
   }
   if (odometry) {
-    for (const BetweenEdge& e : graph.betweens) {
+    for (const BetweenEdge& e : graph.Edges<BetweenEdge>()) {
       if (graph.vertices.at(e.from).label.role != Role::kCamera) continue;
       const Pose E = Compose(Inverse(e.measurement),
                              Compose(Inverse(Pose{v.at(e.from)}), Pose{v.at(e.to)}));
@@ -114,8 +114,8 @@ void CheckNoiseFree(const Scene& scene) {
   options.noise = false;
   const SimulatedScene sim = MustSimulate(scene, options);
   const Graph& g = sim.graph;
-  ASSERT_GT(g.motion_edges.size(), 50u);
-  for (const MotionEdge& e : g.motion_edges) {
+  ASSERT_GT(g.Edges<MotionEdge>().size(), 50u);
+  for (const MotionEdge& e : g.Edges<MotionEdge>()) {
     const Pose* L_prev = sim.ground_truth.Object(e.object, e.frame - 1);
     const Pose* L_curr = sim.ground_truth.Object(e.object, e.frame);
     ASSERT_TRUE(L_prev && L_curr);
@@ -215,8 +215,8 @@ TEST(Simulate, NoiseDoesNotChangeTheLayout) {
   const Scene scene = MakeSyntheticScene(noisy);
   const SimulatedScene a = MustSimulate(scene, noisy), b = MustSimulate(scene, exact);
   ASSERT_EQ(a.graph.vertices.size(), b.graph.vertices.size());
-  EXPECT_EQ(a.graph.point_edges.size(), b.graph.point_edges.size());
-  EXPECT_EQ(a.graph.motion_edges.size(), b.graph.motion_edges.size());
+  EXPECT_EQ(a.graph.Edges<PointEdge>().size(), b.graph.Edges<PointEdge>().size());
+  EXPECT_EQ(a.graph.Edges<MotionEdge>().size(), b.graph.Edges<MotionEdge>().size());
   EXPECT_EQ(a.true_values, b.true_values);
 }
 
@@ -250,7 +250,7 @@ TEST(Simulate, SyntheticScene) {
   EXPECT_EQ(sim.statistics.moving_objects_observed, 3);
   EXPECT_EQ(sim.statistics.parked_objects, 1);
   std::map<int64_t, int64_t> last_frame;
-  for (const MotionEdge& e : sim.graph.motion_edges) {
+  for (const MotionEdge& e : sim.graph.Edges<MotionEdge>()) {
     last_frame[e.object] = std::max(last_frame[e.object], e.frame);
   }
   EXPECT_EQ(last_frame.size(), 3u);

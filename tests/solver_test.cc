@@ -99,7 +99,7 @@ TEST(SolverTest, UnusedVertexIsHeldConstantAndReported) {
 
 TEST(SolverTest, EdgeNamingOneVertexTwiceIsAnErrorNotACrash) {
   Graph graph = Read(kTwoPoses);
-  graph.betweens[0].to = graph.betweens[0].from;
+  graph.Edges<BetweenEdge>()[0].to = graph.Edges<BetweenEdge>()[0].from;
   Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
   ASSERT_FALSE(report.ok());
   EXPECT_EQ(report.error().line, 4);
@@ -148,7 +148,7 @@ constexpr char kObjectCentric[] =
 
 TEST(SolverTest, NonmonotonicStepsAreOnByDefaultOnlyWithTheObjectFrameKinematicResidual) {
   Graph object_centric = Read(kObjectCentric);
-  ASSERT_FALSE(object_centric.kinematic_edges.empty());
+  ASSERT_FALSE(object_centric.Edges<KinematicEdge>().empty());
   Expected<SolveReport> report = Solve(SolverOptions{}, &object_centric);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.nonmonotonic_steps, 0);
@@ -206,7 +206,7 @@ TEST(SolverTest, AutoChoosesBySolverClassOfTheGraph) {
 
   // Object-centric without kinematic edges (oc_a): LM, monotonic.
   Graph oc_a = Read(kObjectCentric);
-  oc_a.kinematic_edges.clear();
+  oc_a.Edges<KinematicEdge>().clear();
   report = Solve(SolverOptions{}, &oc_a);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);

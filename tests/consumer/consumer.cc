@@ -24,11 +24,11 @@ int main(int argc, char** argv) {
   ceres::Problem problem;
   dynslam::SE3Manifold* manifold = new dynslam::SE3Manifold();  // the problem owns it
   for (auto& [id, vertex] : own.vertices) problem.AddParameterBlock(vertex.value.data(), 7, manifold);
-  for (const dynslam::PriorEdge& e : own.priors) {
+  for (const dynslam::PriorEdge& e : own.Edges<dynslam::PriorEdge>()) {
     problem.AddResidualBlock(dynslam::PosePriorError::Create(e.measurement, e.information),
                              nullptr, own.Find(e.pose)->value.data());
   }
-  for (const dynslam::BetweenEdge& e : own.betweens) {
+  for (const dynslam::BetweenEdge& e : own.Edges<dynslam::BetweenEdge>()) {
     problem.AddResidualBlock(dynslam::PoseBetweenError::Create(e.measurement, e.information),
                              nullptr, own.Find(e.from)->value.data(), own.Find(e.to)->value.data());
   }

@@ -1,0 +1,449 @@
+// The graph file's vocabulary as tables (SPEC §1.2–§1.5): vertex roles with their labels, edge
+// kinds, and one struct per edge tag that lists its fields in file order. The reader, the
+// writer, role inference and checks, counting and the solver's assembly all read these tables;
+// adding an edge tag means adding its struct here and its name to `EdgeTypes` (and, for the
+// solver, its residual in src/edge_costs.h). No Ceres here.
+//
+// Information matrices are stored in tangent order [ω; ρ] (SPEC §0); the reader permutes the
+// file's g2o order exactly once and the writer back (SPEC §1.2).
+#ifndef DYNSLAM_GRAPH_SCHEMA_H_
+#define DYNSLAM_GRAPH_SCHEMA_H_
+
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dynslam/pose.h"
+
+namespace dynslam {
+
+using VertexId = int64_t;  // SPEC §1.1: non-negative, below 2^63, one namespace
+
+enum class VertexType { kPose, kPoint };
+
+// --- roles (SPEC §1.4), in the order they are listed in summary.json (SPEC §4) ---
+
+enum class Role {
+  kUnknown,
+  kCamera,
+  kStaticPoint,
+  kDynamicPoint,
+  kMotion,
+  kObjectPose,
+  kObjectPoint,
+};
+
+enum class LabelField { kObject, kFrame, kTracklet };
+inline const char* LabelFieldName(LabelField field) {
+  return field == LabelField::kObject ? "object" : field == LabelField::kFrame ? "frame" : "tracklet";
+}
+
+struct RoleInfo {
+  Role role;
+  const char* name;       // SPEC §4 `variables` key
+  const char* label_tag;  // SPEC §1.4
+  VertexType type;
+  std::array<LabelField, 3> fields;  // after the id, in file order; the first `num_fields`
+  int num_fields;
+  bool constant = false;  // never a variable: a solver holds it constant and writes it back unchanged
+};
+
+inline constexpr RoleInfo kRoles[] = {
+    {Role::kCamera, "camera", "LABEL_CAMERA", VertexType::kPose, {LabelField::kFrame}, 1},
+    {Role::kStaticPoint, "static_point", "LABEL_STATIC_POINT", VertexType::kPoint,
+     {LabelField::kTracklet}, 1},
+    {Role::kDynamicPoint, "dynamic_point", "LABEL_DYNAMIC_POINT", VertexType::kPoint,
+     {LabelField::kObject, LabelField::kFrame, LabelField::kTracklet}, 3},
+    {Role::kMotion, "motion", "LABEL_MOTION", VertexType::kPose,
+     {LabelField::kObject, LabelField::kFrame}, 2},
+    {Role::kObjectPose, "object_pose", "LABEL_OBJECT_POSE", VertexType::kPose,
+     {LabelField::kObject, LabelField::kFrame}, 2},
+    {Role::kObjectPoint, "object_point", "LABEL_OBJECT_POINT", VertexType::kPoint,
+     {LabelField::kObject, LabelField::kTracklet}, 2},
+};
+inline constexpr size_t kNumRoles = std::size(kRoles);
+
+inline constexpr std::array<Role, kNumRoles> MakeAllRoles() {
+  std::array<Role, kNumRoles> roles{};
+  for (size_t i = 0; i < kNumRoles; ++i) roles[i] = kRoles[i].role;
+  return roles;
+}
+inline constexpr std::array<Role, kNumRoles> kAllRoles = MakeAllRoles();
+
+// The table row of `role`; null for kUnknown.
+inline const RoleInfo* InfoOf(Role role) {
+  for (const RoleInfo& info : kRoles) {
+    if (info.role == role) return &info;
+  }
+  return nullptr;
+}
+
+// "camera", "static_point", …; "unknown" for kUnknown.
+inline const char* RoleName(Role role) {
+  const RoleInfo* info = InfoOf(role);
+  return info == nullptr ? "unknown" : info->name;
+}
+
+// A vertex's role and indices. Fields that a role does not have stay -1.
+struct Label {
+  Role role = Role::kUnknown;
+  int64_t object = -1;
+  int64_t frame = -1;
+  int64_t tracklet = -1;
+
+  int64_t& at(LabelField field) {
+    return field == LabelField::kObject ? object : field == LabelField::kFrame ? frame : tracklet;
+  }
+  int64_t at(LabelField field) const { return const_cast<Label*>(this)->at(field); }
+};
+
+// --- edge kinds (SPEC §1.5), in the order costs are reported and edges are written (§3.4) ---
+
+enum class EdgeKind {
+  kPrior,
+  kOdometry,
+  kSmoothing,
+  kPoint,
+  kDynamicPoint,
+  kMotion,
+  kObjectPoint,
+  kObjectMotion,
+  kKinematic,
+  kObjectPrior,
+};
+inline constexpr const char* kEdgeKindNames[] = {
+    "prior",  "odometry",     "smoothing",     "point",     "dynamic_point",
+    "motion", "object_point", "object_motion", "kinematic", "object_prior"};
+inline constexpr int kNumEdgeKinds = static_cast<int>(std::size(kEdgeKindNames));
+
+inline constexpr std::array<EdgeKind, kNumEdgeKinds> MakeAllEdgeKinds() {
+  std::array<EdgeKind, kNumEdgeKinds> kinds{};
+  for (int i = 0; i < kNumEdgeKinds; ++i) kinds[i] = static_cast<EdgeKind>(i);
+  return kinds;
+}
+inline constexpr std::array<EdgeKind, kNumEdgeKinds> kAllEdgeKinds = MakeAllEdgeKinds();
+
+inline const char* EdgeKindName(EdgeKind kind) { return kEdgeKindNames[static_cast<int>(kind)]; }
+
+// --- edges: one struct per tag ---
+//
+// `Fields(edge, visitor)` hands every field to the visitor in file order:
+//   v.Vertex(VertexField, VertexId&)    a vertex reference
+//   v.Integer(name, int64_t&)           a non-negative integer (object id, frame)
+//   v.OptionalOffsetParameter(name, bool& present) g2o's offset-parameter id: absent or `0`
+//   v.OptionalFlag(name, bool&)         a trailing `0`/`1`, absent means 0
+//   v.Measurement(Pose&) / v.Measurement(Eigen::Vector3d&)
+//   v.Information(Eigen::Matrix3d&) / v.Information(Matrix6d&)
+// A tag has at most one optional field. Besides its fields, each struct says:
+//   Kind(role_of)          its kind from the roles of its vertices (role_of(id) → Role);
+//   Invalid()              a field value the tag forbids ("" when none);
+//   Inconsistent(label_of) how a labelled file's labels contradict the edge's fields ("" when
+//                          they agree; label_of(id) → const Label&, roles already checked);
+//   Infer(label_at)        the labels an unlabelled file's vertices take from the edge
+//                          (label_at(id) → Label&), after every role is known.
+
+// A vertex field: its name in messages, the vertex type, the role it gives a vertex of an
+// unlabelled file (kUnknown: none), the roles a labelled file may give it, and whether it is a
+// residual's parameter (false: a reference the residual does not use).
+struct VertexField {
+  const char* name;
+  VertexType type;
+  Role claim;
+  std::initializer_list<Role> allowed;
+  bool parameter = true;
+};
+
+// A visitor that ignores every field; visitors interested in some fields derive from it.
+struct IgnoreFields {
+  void Vertex(const VertexField&, VertexId) {}
+  void Integer(const char*, int64_t) {}
+  void OptionalOffsetParameter(const char*, bool) {}
+  void OptionalFlag(const char*, bool) {}
+  template <typename T>
+  void Measurement(const T&) {}
+  template <typename T>
+  void Information(const T&) {}
+};
+
+// SPEC §1.2 EDGE_SE3_PRIOR: r = Log(Z⁻¹ · X).
+struct PriorEdge {
+  static constexpr const char* kTag = "EDGE_SE3_PRIOR";
+  VertexId pose = 0;
+  Pose measurement;
+  Matrix6d information = Matrix6d::Identity();
+  bool has_parameter_id = false;  // the g2o form `EDGE_SE3_PRIOR id 0 …` (kept for round trips)
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"id", VertexType::kPose, Role::kUnknown,
+              {Role::kCamera, Role::kObjectPose, Role::kMotion}},
+             e.pose);
+    v.OptionalOffsetParameter("param", e.has_parameter_id);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf& role_of) const {
+    return role_of(pose) == Role::kObjectPose ? EdgeKind::kObjectPrior : EdgeKind::kPrior;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// SPEC §1.2 EDGE_SE3:QUAT: r = Log(Z⁻¹ · A⁻¹ · B). Odometry (cameras) or smoothing (motions).
+struct BetweenEdge {
+  static constexpr const char* kTag = "EDGE_SE3:QUAT";
+  VertexId from = 0;  // A
+  VertexId to = 0;    // B
+  Pose measurement;
+  Matrix6d information = Matrix6d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"a", VertexType::kPose, Role::kUnknown, {Role::kCamera, Role::kMotion}}, e.from);
+    v.Vertex({"b", VertexType::kPose, Role::kUnknown, {Role::kCamera, Role::kMotion}}, e.to);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf& role_of) const {
+    return role_of(from) == Role::kMotion ? EdgeKind::kSmoothing : EdgeKind::kOdometry;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// SPEC §1.2 EDGE_SE3_TRACKXYZ: r = X⁻¹ · m − z.
+struct PointEdge {
+  static constexpr const char* kTag = "EDGE_SE3_TRACKXYZ";
+  VertexId pose = 0;
+  VertexId point = 0;
+  Eigen::Vector3d measurement = Eigen::Vector3d::Zero();  // point in the camera frame
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  bool is_dynamic = false;
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    const Role point_role = e.is_dynamic ? Role::kDynamicPoint : Role::kStaticPoint;
+    v.Vertex({"pose", VertexType::kPose, Role::kCamera, {Role::kCamera}}, e.pose);
+    v.Vertex({"point", VertexType::kPoint, point_role, {point_role}}, e.point);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+    v.OptionalFlag("is_dynamic", e.is_dynamic);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf& role_of) const {
+    return role_of(point) == Role::kDynamicPoint ? EdgeKind::kDynamicPoint : EdgeKind::kPoint;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// SPEC §1.2 EDGE_SE3_MOTION: r = m_curr − H · m_prev − z (ternary world-centric motion edge).
+struct MotionEdge {
+  static constexpr const char* kTag = "EDGE_SE3_MOTION";
+  VertexId prev = 0;
+  VertexId curr = 0;
+  VertexId motion = 0;
+  Eigen::Vector3d measurement = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  int64_t object = 0;    // front end's object id j
+  int64_t frame = 0;     // frame k of `curr`
+  VertexId camera = 0;   // camera that observed `curr` (a vertex reference)
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"prev", VertexType::kPoint, Role::kDynamicPoint, {Role::kDynamicPoint}}, e.prev);
+    v.Vertex({"curr", VertexType::kPoint, Role::kDynamicPoint, {Role::kDynamicPoint}}, e.curr);
+    v.Vertex({"motion", VertexType::kPose, Role::kMotion, {Role::kMotion}}, e.motion);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+    v.Integer("object", e.object);
+    v.Integer("frame", e.frame);
+    v.Vertex({"camera", VertexType::kPose, Role::kCamera, {Role::kCamera}, false}, e.camera);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kMotion;
+  }
+  const char* Invalid() const {
+    return frame < 1 ? "frame must be at least 1 (the current point's frame k)" : "";
+  }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf& label_of) const {
+    const Label &p = label_of(prev), &c = label_of(curr), &h = label_of(motion);
+    if (p.object != object || c.object != object || h.object != object) {
+      return "EDGE_SE3_MOTION of object " + std::to_string(object) +
+             " joins vertices labelled with objects " + std::to_string(p.object) + ", " +
+             std::to_string(c.object) + " and " + std::to_string(h.object);
+    }
+    if (c.frame != frame || h.frame != frame || p.frame != frame - 1) {
+      return "EDGE_SE3_MOTION at frame " + std::to_string(frame) +
+             " joins points labelled at frames " + std::to_string(p.frame) + " and " +
+             std::to_string(c.frame) + " and a motion at frame " + std::to_string(h.frame) +
+             "; expected k-1, k and k";
+    }
+    return "";
+  }
+  // Dynamic points and motions take object and frame from their motion edges (SPEC §3.1).
+  template <typename LabelAt>
+  void Infer(const LabelAt& label_at) const {
+    for (const auto& [id, at_frame] : {std::pair{motion, frame}, std::pair{curr, frame},
+                                       std::pair{prev, frame - 1}}) {
+      Label& label = label_at(id);
+      label.object = object;
+      label.frame = at_frame;
+    }
+  }
+};
+
+// SPEC §1.3 EDGE_SE3_OBJ_TRACKXYZ: r = X⁻¹ · L · m_L − z.
+struct ObjectPointEdge {
+  static constexpr const char* kTag = "EDGE_SE3_OBJ_TRACKXYZ";
+  VertexId camera = 0;
+  VertexId object_pose = 0;
+  VertexId point = 0;
+  Eigen::Vector3d measurement = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"camera", VertexType::kPose, Role::kCamera, {Role::kCamera}}, e.camera);
+    v.Vertex({"objpose", VertexType::kPose, Role::kObjectPose, {Role::kObjectPose}},
+             e.object_pose);
+    v.Vertex({"point", VertexType::kPoint, Role::kObjectPoint, {Role::kObjectPoint}}, e.point);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kObjectPoint;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// SPEC §1.3 EDGE_SE3_OBJ_MOTION: r = L_curr · m_L − H · L_prev · m_L.
+struct ObjectMotionEdge {
+  static constexpr const char* kTag = "EDGE_SE3_OBJ_MOTION";
+  VertexId pose_prev = 0;
+  VertexId pose_curr = 0;
+  VertexId motion = 0;
+  VertexId point = 0;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"pose_prev", VertexType::kPose, Role::kObjectPose, {Role::kObjectPose}},
+             e.pose_prev);
+    v.Vertex({"pose_curr", VertexType::kPose, Role::kObjectPose, {Role::kObjectPose}},
+             e.pose_curr);
+    v.Vertex({"motion", VertexType::kPose, Role::kMotion, {Role::kMotion}}, e.motion);
+    v.Vertex({"point", VertexType::kPoint, Role::kObjectPoint, {Role::kObjectPoint}}, e.point);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kObjectMotion;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// SPEC §1.3 EDGE_SE3_OBJ_KINEMATIC: r = Log(L_curr⁻¹ · H · L_prev).
+struct KinematicEdge {
+  static constexpr const char* kTag = "EDGE_SE3_OBJ_KINEMATIC";
+  VertexId pose_prev = 0;
+  VertexId pose_curr = 0;
+  VertexId motion = 0;
+  Matrix6d information = Matrix6d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"pose_prev", VertexType::kPose, Role::kObjectPose, {Role::kObjectPose}},
+             e.pose_prev);
+    v.Vertex({"pose_curr", VertexType::kPose, Role::kObjectPose, {Role::kObjectPose}},
+             e.pose_curr);
+    v.Vertex({"motion", VertexType::kPose, Role::kMotion, {Role::kMotion}}, e.motion);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kKinematic;
+  }
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
+// Every edge struct, in the order the reader looks tags up and the solver adds residuals.
+template <typename... Edges>
+struct TypeList {
+  using Vectors = std::tuple<std::vector<Edges>...>;
+  template <typename F>
+  static void ForEach(F&& f) {
+    (f(static_cast<Edges*>(nullptr)), ...);
+  }
+};
+using EdgeTypes = TypeList<PriorEdge, BetweenEdge, PointEdge, MotionEdge, ObjectPointEdge,
+                           ObjectMotionEdge, KinematicEdge>;
+
+// Ids of an edge's vertex fields in file order; `parameters_only` leaves out references.
+template <typename Edge>
+std::vector<VertexId> VertexIds(const Edge& edge, bool parameters_only = false) {
+  struct Collect : IgnoreFields {
+    std::vector<VertexId> ids;
+    bool parameters_only;
+    void Vertex(const VertexField& field, VertexId id) {
+      if (field.parameter || !parameters_only) ids.push_back(id);
+    }
+  } collect;
+  collect.parameters_only = parameters_only;
+  Edge::Fields(edge, collect);
+  return collect.ids;
+}
+
+}  // namespace dynslam
+
+#endif  // DYNSLAM_GRAPH_SCHEMA_H_
