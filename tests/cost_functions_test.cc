@@ -9,6 +9,8 @@
 #include <ceres/cost_function.h>
 #include <gtest/gtest.h>
 
+#include "cost_functions/hybrid_point_error.h"
+#include "cost_functions/hybrid_smoothing_error.h"
 #include "cost_functions/object_kinematic_error.h"
 #include "cost_functions/object_point_measurement_error.h"
 #include "cost_functions/object_point_motion_error.h"
@@ -251,6 +253,67 @@ TEST(ObjectKinematicErrorTest, ZeroHandValueAndJacobian) {
   for (const Pose& x : CheckPoses()) {
     EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x)}), 1e-7);
     EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(Compose(h, x)), PoseBlock(h)}), 1e-7);
+  }
+}
+
+// SPEC §3.6: X⁻¹ · H · L_e · m − z, zero where the point is seen; the hand value with X = L_e = I,
+// H a translation; Jacobians (L_e included, though the solver holds it constant) on every check
+// pose.
+TEST(HybridPointErrorTest, ZeroHandValueAndJacobian) {
+  const Pose x = Exp((Vector6d() << 0.1, -0.3, 0.2, 4, -1, 2).finished());
+  const Pose h = kOffset;
+  const Pose l_e = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Eigen::Vector3d m(0.5, -1.0, 0.3);
+  const Eigen::Vector3d z = Transform(Inverse(x), Transform(Compose(h, l_e), m));
+  std::unique_ptr<ceres::CostFunction> cost(HybridPointError::Create(z, Information3()));
+  const Block point(m.data(), m.data() + 3);
+  EXPECT_LT(Residual(*cost, {PoseBlock(x), PoseBlock(h), PoseBlock(l_e), point}).norm(), 1e-13);
+  std::unique_ptr<ceres::CostFunction> hand(
+      HybridPointError::Create(Eigen::Vector3d(1, 1, 1), Eigen::Matrix3d::Identity()));
+  // I⁻¹ · (m + (1, 0, 0)) − (1, 1, 1) with m = (0.5, −1, 0.3) = (0.5, −2, −0.7).
+  EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(Translation(1, 0, 0)),
+                              PoseBlock(Pose::Identity()), point}) -
+             Eigen::Vector3d(0.5, -2, -0.7))
+                .norm(),
+            1e-15);
+  for (const Pose& p : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(p), PoseBlock(h), PoseBlock(l_e), point}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(p), PoseBlock(l_e), point}), 1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(h), PoseBlock(p), point}), 1e-7);
+  }
+}
+
+// SPEC §3.6: Log((L_a⁻¹ L_b)⁻¹ (L_b⁻¹ L_c)), L_x = H_x · L_e, equals the stated equivalent form
+// Ad(L_e⁻¹) · Log(H_b⁻¹ H_a H_b⁻¹ H_c); zero at a constant body-frame velocity; Jacobians.
+TEST(HybridSmoothingErrorTest, EquivalentFormZeroAndJacobian) {
+  const Pose l_e = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose h_a = Exp((Vector6d() << 0.05, -0.1, 0.3, 0.4, 0.2, -1).finished());
+  const Pose h_b = Exp((Vector6d() << -0.2, 0.3, 0.1, 1, -0.5, 0.3).finished());
+  const Pose h_c = Exp((Vector6d() << 0.4, 0.2, -0.3, -2, 1, 0.5).finished());
+  std::unique_ptr<ceres::CostFunction> cost(HybridSmoothingError::Create(Information6()));
+  const Vector6d expected = SqrtInformation(Information6()) * Adjoint(Inverse(l_e)) *
+                            Log(Compose(Compose(Inverse(h_b), h_a), Compose(Inverse(h_b), h_c)));
+  EXPECT_LT((Residual(*cost, {PoseBlock(h_a), PoseBlock(h_b), PoseBlock(h_c), PoseBlock(l_e)}) -
+             expected)
+                .norm(),
+            1e-12);
+  // Constant body-frame velocity V: L_b = L_a · V, L_c = L_b · V ⇒ H_x = L_x · L_e⁻¹.
+  const Pose v = kOffset;
+  const Pose l_a = Compose(h_a, l_e);
+  const Pose l_b = Compose(l_a, v), l_c = Compose(l_b, v);
+  EXPECT_LT(Residual(*cost, {PoseBlock(h_a), PoseBlock(Compose(l_b, Inverse(l_e))),
+                             PoseBlock(Compose(l_c, Inverse(l_e))), PoseBlock(l_e)})
+                .norm(),
+            1e-12);
+  for (const Pose& p : CheckPoses()) {
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(p), PoseBlock(h_b), PoseBlock(h_c), PoseBlock(l_e)}),
+              1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(h_a), PoseBlock(p), PoseBlock(h_c), PoseBlock(l_e)}),
+              1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(h_a), PoseBlock(h_b), PoseBlock(p), PoseBlock(l_e)}),
+              1e-7);
+    EXPECT_LT(JacobianError(*cost, {PoseBlock(h_a), PoseBlock(h_b), PoseBlock(h_c), PoseBlock(p)}),
+              1e-7);
   }
 }
 

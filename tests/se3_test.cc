@@ -84,6 +84,19 @@ TEST(SE3Test, ComposeInverseAndTransformAgreeWithIsometry) {
   EXPECT_LT((Transform(a, p) - a.ToIsometry() * p).norm(), 1e-14);
 }
 
+// The adjoint in [ω; ρ] order: T · Exp(ξ) · T⁻¹ = Exp(Ad(T) · ξ), checked on a generic pose
+// and by the hand value of a pure translation (ω about z moves ρ by t × ω).
+TEST(SE3Test, AdjointConjugatesTheTangent) {
+  const Pose t = Exp(Xi(0.4, -0.2, 1.1, 1, 2, 3));
+  const Vector6d xi = Xi(0.05, 0.3, -0.2, 0.7, -1.5, 0.4);
+  EXPECT_LT((Log(Compose(Compose(t, Exp(xi)), Inverse(t))) - Adjoint(t) * xi).norm(), 1e-12);
+  const Pose shift = Exp(Xi(0, 0, 0, 0, 5, 0));
+  Matrix6d expected = Matrix6d::Identity();  // [t]× for t = (0, 5, 0): [[0 0 5] [0 0 0] [-5 0 0]]
+  expected(3, 2) = 5;
+  expected(5, 0) = -5;
+  EXPECT_LT((Adjoint(shift) - expected).norm(), 1e-14);
+}
+
 // ∂Exp/∂ξ and ∂Log/∂pose through Jets at the singular point θ = 0 are finite and equal central
 // differences.
 TEST(SE3Test, JetDerivativesAtIdentityMatchCentralDifferences) {

@@ -191,6 +191,19 @@ inline Vector6d Log(const Pose& pose) {
   return xi;
 }
 
+// Ad(T) in tangent order [ω; ρ]: [R 0; [t]×R R], so that T · Exp(ξ) · T⁻¹ = Exp(Ad(T) · ξ).
+inline Matrix6d Adjoint(const Pose& pose) {
+  const Eigen::Matrix3d r = pose.rotation().toRotationMatrix();
+  const Eigen::Vector3d t = pose.translation();
+  Eigen::Matrix3d t_hat;
+  t_hat << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  Matrix6d ad = Matrix6d::Zero();
+  ad.block<3, 3>(0, 0) = r;
+  ad.block<3, 3>(3, 0) = t_hat * r;
+  ad.block<3, 3>(3, 3) = r;
+  return ad;
+}
+
 // Rotation angle in [0, π], robust near 0 and π.
 inline double RotationAngle(const Pose& pose) {
   const Eigen::Quaterniond q = pose.rotation();
