@@ -6,6 +6,8 @@
 
 #include <ceres/cost_function.h>
 
+#include "cost_functions/hybrid_point_error.h"
+#include "cost_functions/hybrid_smoothing_error.h"
 #include "cost_functions/object_kinematic_error.h"
 #include "cost_functions/object_point_measurement_error.h"
 #include "cost_functions/object_point_motion_error.h"
@@ -50,6 +52,14 @@ inline ceres::CostFunction* MakeCost(const ObjectMotionEdge& e, const SolverOpti
 
 inline ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& options) {
   return ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual);
+}
+
+inline ceres::CostFunction* MakeCost(const HybridPointEdge& e, const SolverOptions&) {
+  return HybridPointError::Create(e.measurement, e.information);
+}
+
+inline ceres::CostFunction* MakeCost(const HybridSmoothingEdge& e, const SolverOptions&) {
+  return HybridSmoothingError::Create(e.information);
 }
 
 }  // namespace dynslam

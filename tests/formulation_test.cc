@@ -298,7 +298,7 @@ TEST(FormulationEdgeCaseTest, UnlabelledFileTwoSegmentsAndATrackletOfLengthOne) 
             "dropped: 1 tracklets of length one (1 points, 1 point edges): in no motion edge");
   EXPECT_EQ(report.lines[2], "kept: object 9 frames 0..2 (3 frames), 2 tracklets");
   EXPECT_EQ(report.lines[3], "kept: object 9 frames 3..6 (4 frames), 2 tracklets");
-  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 6>{7, 1, 14, 5, 0, 0}));
+  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 8>{7, 1, 14, 5, 0, 0, 0, 0}));
   const auto edges = CountEdgesByKind(*wc);
   EXPECT_EQ(edges, (std::array<int64_t, kNumEdgeKinds>{1, 6, 3, 2, 14, 10, 0, 0, 0, 0}));
   // Tracklet ids: one sequence by first point id over static and dynamic tracklets (SPEC §3.1):
@@ -312,7 +312,7 @@ TEST(FormulationEdgeCaseTest, UnlabelledFileTwoSegmentsAndATrackletOfLengthOne) 
   Expected<Graph> oc_b = BuildFormulation(front_end, Formulation::kObjectCentricB, options, nullptr,
                                           nullptr);
   ASSERT_TRUE(oc_b.ok()) << oc_b.error().ToString();
-  EXPECT_EQ(Roles(*oc_b), (std::array<int64_t, 6>{7, 1, 0, 5, 7, 4}));
+  EXPECT_EQ(Roles(*oc_b), (std::array<int64_t, 8>{7, 1, 0, 5, 7, 4, 0, 0}));
   // New ids from max_id + 1 = 56: poses of the first segment, its points, then the second's.
   EXPECT_EQ(oc_b->Find(56)->label.role, Role::kObjectPose);
   EXPECT_EQ(oc_b->Find(58)->label.frame, 2);
@@ -354,11 +354,11 @@ TEST(FormulationEdgeCaseTest, SegmentsShorterThanMinObjectFramesAreDroppedEveryw
   EXPECT_EQ(report.lines[3],
             "dropped: object 9 frames 3..6 (4 frames) < 5: 2 tracklets, 8 points, 3 motions, 8 "
             "point edges, 6 motion edges, 2 smoothing edges");
-  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 6>{7, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 8>{7, 1, 0, 0, 0, 0, 0, 0}));
   Expected<Graph> oc_c = BuildFormulation(front_end, Formulation::kObjectCentricC, BuildOptions{},
                                           nullptr, nullptr);
   ASSERT_TRUE(oc_c.ok());
-  EXPECT_EQ(Roles(*oc_c), (std::array<int64_t, 6>{7, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(Roles(*oc_c), (std::array<int64_t, 8>{7, 1, 0, 0, 0, 0, 0, 0}));
 }
 
 // SPEC §7 items 4 and 5 on the synthetic scene: identity motions, one information per point-edge
@@ -475,7 +475,7 @@ TEST(FormulationEdgeCaseTest, LabelledMotionInNoMotionEdgeIsDroppedAndReported) 
             "4 tracklets, 6 motions, 1 objects, 2 segments kept");
   EXPECT_EQ(report.lines[1], "dropped: 1 motions: in no motion edge");
   EXPECT_EQ(rebuilt->Find(70), nullptr);
-  EXPECT_EQ(Roles(*rebuilt), (std::array<int64_t, 6>{7, 1, 0, 5, 7, 4}));
+  EXPECT_EQ(Roles(*rebuilt), (std::array<int64_t, 8>{7, 1, 0, 5, 7, 4, 0, 0}));
 }
 
 // The synthetic scene was made to contain SPEC §3.1's edge cases (reference simulate.txt and
@@ -492,7 +492,7 @@ TEST(FormulationEdgeCaseTest, SyntheticSceneSegmentsWithExactCounts) {
   Expected<Graph> wc = BuildFormulation(*front_end, Formulation::kWorldCentric, BuildOptions{}, &*gt, nullptr);
   ASSERT_TRUE(wc.ok()) << wc.error().ToString();
   // 2405 dynamic points − 17 of length one − 117 of object 3; 80 motions − 3 of object 3.
-  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 6>{30, 657, 2271, 77, 0, 0}));
+  EXPECT_EQ(Roles(*wc), (std::array<int64_t, 8>{30, 657, 2271, 77, 0, 0, 0, 0}));
   std::set<int64_t> objects;
   for (const auto& [id, v] : wc->vertices) {
     if (v.label.role == Role::kDynamicPoint || v.label.role == Role::kMotion) objects.insert(v.label.object);

@@ -36,11 +36,19 @@ enum class Role {
   kMotion,
   kObjectPose,
   kObjectPoint,
+  kHybridMotion,
+  kEmbeddedFrame,
 };
 
-enum class LabelField { kObject, kFrame, kTracklet };
+enum class LabelField { kObject, kFrame, kTracklet, kEmbedded };
 inline const char* LabelFieldName(LabelField field) {
-  return field == LabelField::kObject ? "object" : field == LabelField::kFrame ? "frame" : "tracklet";
+  switch (field) {
+    case LabelField::kObject: return "object";
+    case LabelField::kFrame: return "frame";
+    case LabelField::kTracklet: return "tracklet";
+    case LabelField::kEmbedded: return "embedded";
+  }
+  return "?";
 }
 
 struct RoleInfo {
@@ -65,6 +73,10 @@ inline constexpr RoleInfo kRoles[] = {
      {LabelField::kObject, LabelField::kFrame}, 2},
     {Role::kObjectPoint, "object_point", "LABEL_OBJECT_POINT", VertexType::kPoint,
      {LabelField::kObject, LabelField::kTracklet}, 2},
+    {Role::kHybridMotion, "hybrid_motion", "LABEL_HYBRID_MOTION", VertexType::kPose,
+     {LabelField::kObject, LabelField::kFrame, LabelField::kEmbedded}, 3},
+    {Role::kEmbeddedFrame, "embedded_frame", "LABEL_EMBEDDED_FRAME", VertexType::kPose,
+     {LabelField::kObject, LabelField::kFrame}, 2, true},
 };
 inline constexpr size_t kNumRoles = std::size(kRoles);
 
@@ -95,9 +107,16 @@ struct Label {
   int64_t object = -1;
   int64_t frame = -1;
   int64_t tracklet = -1;
+  VertexId embedded = -1;  // a hybrid motion's embedded frame (SPEC §3.6)
 
   int64_t& at(LabelField field) {
-    return field == LabelField::kObject ? object : field == LabelField::kFrame ? frame : tracklet;
+    switch (field) {
+      case LabelField::kObject: return object;
+      case LabelField::kFrame: return frame;
+      case LabelField::kTracklet: return tracklet;
+      case LabelField::kEmbedded: return embedded;
+    }
+    return object;
   }
   int64_t at(LabelField field) const { return const_cast<Label*>(this)->at(field); }
 };
@@ -115,10 +134,13 @@ enum class EdgeKind {
   kObjectMotion,
   kKinematic,
   kObjectPrior,
+  kHybridPoint,
+  kHybridSmoothing,
 };
 inline constexpr const char* kEdgeKindNames[] = {
-    "prior",  "odometry",     "smoothing",     "point",     "dynamic_point",
-    "motion", "object_point", "object_motion", "kinematic", "object_prior"};
+    "prior",        "odometry",      "smoothing", "point",        "dynamic_point",
+    "motion",       "object_point",  "object_motion", "kinematic", "object_prior",
+    "hybrid_point", "hybrid_smoothing"};
 inline constexpr int kNumEdgeKinds = static_cast<int>(std::size(kEdgeKindNames));
 
 inline constexpr std::array<EdgeKind, kNumEdgeKinds> MakeAllEdgeKinds() {
@@ -182,7 +204,7 @@ struct PriorEdge {
   template <typename Self, typename V>
   static void Fields(Self& e, V& v) {
     v.Vertex({"id", VertexType::kPose, Role::kUnknown,
-              {Role::kCamera, Role::kObjectPose, Role::kMotion}},
+              {Role::kCamera, Role::kObjectPose, Role::kMotion, Role::kHybridMotion}},
              e.pose);
     v.OptionalOffsetParameter("param", e.has_parameter_id);
     v.Measurement(e.measurement);
@@ -190,7 +212,9 @@ struct PriorEdge {
   }
   template <typename RoleOf>
   EdgeKind Kind(const RoleOf& role_of) const {
-    return role_of(pose) == Role::kObjectPose ? EdgeKind::kObjectPrior : EdgeKind::kPrior;
+    const Role role = role_of(pose);  // a hybrid segment's anchor is an object prior (§3.6)
+    return role == Role::kObjectPose || role == Role::kHybridMotion ? EdgeKind::kObjectPrior
+                                                                     : EdgeKind::kPrior;
   }
   const char* Invalid() const { return ""; }
   template <typename LabelOf>
@@ -417,6 +441,117 @@ struct KinematicEdge {
   void Infer(const LabelAt&) const {}
 };
 
+// SPEC §3.6 EDGE_SE3_HY_TRACKXYZ: r = X⁻¹ · H · L_e · m − z.
+struct HybridPointEdge {
+  static constexpr const char* kTag = "EDGE_SE3_HY_TRACKXYZ";
+  VertexId camera = 0;
+  VertexId motion = 0;    // H^e_k
+  VertexId embedded = 0;  // L_e (constant)
+  VertexId point = 0;     // m, in the object frame
+  Eigen::Vector3d measurement = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    v.Vertex({"camera", VertexType::kPose, Role::kCamera, {Role::kCamera}}, e.camera);
+    v.Vertex({"motion", VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}}, e.motion);
+    v.Vertex({"embedded", VertexType::kPose, Role::kEmbeddedFrame, {Role::kEmbeddedFrame}},
+             e.embedded);
+    v.Vertex({"point", VertexType::kPoint, Role::kObjectPoint, {Role::kObjectPoint}}, e.point);
+    v.Measurement(e.measurement);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kHybridPoint;
+  }
+  const char* Invalid() const { return ""; }
+  // The camera's frame is the motion's, motion and point are of one object, the motion's
+  // embedded frame is the edge's and not later than the motion.
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf& label_of) const {
+    const Label &x = label_of(camera), &h = label_of(motion), &m = label_of(point);
+    const std::string tag = kTag;
+    if (x.frame != h.frame) {
+      return tag + " joins a camera at frame " + std::to_string(x.frame) +
+             " and a motion at frame " + std::to_string(h.frame);
+    }
+    if (h.object != m.object) {
+      return tag + " joins a motion of object " + std::to_string(h.object) +
+             " and a point of object " + std::to_string(m.object);
+    }
+    return HybridMotionAgrees(tag, h, embedded, label_of(embedded));
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+
+  // Shared with HybridSmoothingEdge: `h` is a motion from embedded frame `id` (labelled `l_e`).
+  static std::string HybridMotionAgrees(const std::string& tag, const Label& h, VertexId id,
+                                        const Label& l_e) {
+    if (h.embedded != id) {
+      return tag + " names embedded frame " + std::to_string(id) + ", but its motion at frame " +
+             std::to_string(h.frame) + " is labelled with embedded frame " +
+             std::to_string(h.embedded);
+    }
+    if (l_e.object != h.object || l_e.frame > h.frame) {
+      return tag + ": embedded frame " + std::to_string(id) + " (object " +
+             std::to_string(l_e.object) + ", frame " + std::to_string(l_e.frame) +
+             ") must be of the motion's object " + std::to_string(h.object) +
+             " and not later than its frame " + std::to_string(h.frame);
+    }
+    return "";
+  }
+};
+
+// SPEC §3.6 EDGE_SE3_HY_SMOOTHING: r = Log((L_a⁻¹ L_b)⁻¹ (L_b⁻¹ L_c)), L_x = H_x · L_e.
+struct HybridSmoothingEdge {
+  static constexpr const char* kTag = "EDGE_SE3_HY_SMOOTHING";
+  VertexId motion_a = 0;  // H^e_{k−2}
+  VertexId motion_b = 0;  // H^e_{k−1}
+  VertexId motion_c = 0;  // H^e_k
+  VertexId embedded = 0;  // L_e (constant)
+  Matrix6d information = Matrix6d::Identity();
+  int64_t line = 0;
+
+  template <typename Self, typename V>
+  static void Fields(Self& e, V& v) {
+    for (auto* id : {&e.motion_a, &e.motion_b, &e.motion_c}) {
+      const char* name = id == &e.motion_a ? "motion_a" : id == &e.motion_b ? "motion_b" : "motion_c";
+      v.Vertex({name, VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}}, *id);
+    }
+    v.Vertex({"embedded", VertexType::kPose, Role::kEmbeddedFrame, {Role::kEmbeddedFrame}},
+             e.embedded);
+    v.Information(e.information);
+  }
+  template <typename RoleOf>
+  EdgeKind Kind(const RoleOf&) const {
+    return EdgeKind::kHybridSmoothing;
+  }
+  const char* Invalid() const { return ""; }
+  // Motions of one object at frames k−2, k−1, k, all from the edge's embedded frame.
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf& label_of) const {
+    const Label &a = label_of(motion_a), &b = label_of(motion_b), &c = label_of(motion_c);
+    const std::string tag = kTag;
+    if (a.object != c.object || b.object != c.object || a.frame != c.frame - 2 ||
+        b.frame != c.frame - 1) {
+      return tag + " joins motions labelled (object, frame) (" + std::to_string(a.object) + ", " +
+             std::to_string(a.frame) + "), (" + std::to_string(b.object) + ", " +
+             std::to_string(b.frame) + "), (" + std::to_string(c.object) + ", " +
+             std::to_string(c.frame) + "); expected one object at frames k-2, k-1, k";
+    }
+    for (const Label* h : {&a, &b, &c}) {
+      const std::string wrong =
+          HybridPointEdge::HybridMotionAgrees(tag, *h, embedded, label_of(embedded));
+      if (!wrong.empty()) return wrong;
+    }
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
 // Every edge struct, in the order the reader looks tags up and the solver adds residuals.
 template <typename... Edges>
 struct TypeList {
@@ -427,7 +562,7 @@ struct TypeList {
   }
 };
 using EdgeTypes = TypeList<PriorEdge, BetweenEdge, PointEdge, MotionEdge, ObjectPointEdge,
-                           ObjectMotionEdge, KinematicEdge>;
+                           ObjectMotionEdge, KinematicEdge, HybridPointEdge, HybridSmoothingEdge>;
 
 // Ids of an edge's vertex fields in file order; `parameters_only` leaves out references.
 template <typename Edge>
