@@ -1,4 +1,4 @@
-// dynslam build FRONTEND.g2o --formulation wc|oc_a|oc_b|oc_c --out FILE [--gt GT] [options]
+// dynslam build FRONTEND.g2o --formulation F --out FILE [--gt GT] [options]
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -20,11 +20,14 @@ int RunBuild(int argc, char** argv) {
                    "file (SPEC §3.4 order, full labels) that `dynslam solve` or any other solver reads.\n"
                    "Prints what was kept and dropped.");
   parser.AddPositional("FRONTEND.g2o", &front_end_path, "front-end graph file (SPEC §1.2, labels optional)");
-  parser.AddChoice("formulation", &formulation_name, {"wc", "oc_a", "oc_b", "oc_c"},
-                   "world-centric or object-centric variant (paper Figs. 2 and 3)");
+  parser.AddChoice("formulation", &formulation_name, FormulationChoices(),
+                   "world-centric, object-centric variant (paper Figs. 2 and 3) or hybrid "
+                   "(DynoSAM, SPEC §3.6)");
   parser.AddString("out", &out_path, "graph file to write (required)", "FILE");
   parser.AddString("gt", &gt_path,
-                   "ground truth (SPEC §2): initialises the first object pose of each segment", "GT");
+                   "ground truth (SPEC §2): initialises the first object pose (hy: the embedded "
+                   "frame) of each segment",
+                   "GT");
   BuildFlags build_flags(&parser);
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
@@ -37,7 +40,10 @@ int RunBuild(int argc, char** argv) {
     return kExitBadInput;
   }
   BuildOptions options;
-  build_flags.Finish(&options);
+  if (std::optional<std::string> problem = build_flags.Finish(&options)) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
   compat.Apply(&options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);

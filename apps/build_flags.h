@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli.h"
 #include "dynslam/formulation.h"
@@ -21,7 +22,11 @@ class BuildFlags {
   std::string object_init_ = ObjectInitName(BuildOptions{}.object_init);
   std::string motion_init_ = "frontend";
   double kinematic_sigma_;
+  std::string hybrid_smoothing_info_ = "frontend";
 };
+
+// Every formulation's name, for AddChoice.
+std::vector<std::string> FormulationChoices();
 
 }  // namespace dynslam::cli
 

@@ -298,12 +298,12 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
     return fail(s.error());
   }
   std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n", name,
-               graph->vertices.size(), graph->NumEdges());
+               graph->NumVariables(), graph->NumEdges());
   SolverOptions options = solver_options;
   compat.Apply(formulation == Formulation::kWorldCentric, &options);
   Row row;
   row.formulation = formulation;
-  row.variables = static_cast<int64_t>(graph->vertices.size());
+  row.variables = static_cast<int64_t>(graph->NumVariables());
   row.edges = static_cast<int64_t>(graph->NumEdges());
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
@@ -345,7 +345,7 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
 }  // namespace
 
 int RunCompare(int argc, char** argv) {
-  std::string front_end_path, gt_path, out_dir, formulation_list = "wc,oc_a,oc_b,oc_c";
+  std::string front_end_path, gt_path, out_dir, formulation_list = FormulationNames(",");
   bool no_plots = false;
   ArgParser parser(
       "dynslam compare FRONTEND.g2o --out DIR [--gt GT] [options]",
@@ -364,8 +364,8 @@ int RunCompare(int argc, char** argv) {
                    "start by the centroid rule (SPEC §3.3)",
                    "GT");
   parser.AddString("out", &out_dir, "output directory, required", "DIR");
-  parser.AddString("formulations", &formulation_list, "comma-separated subset of wc,oc_a,oc_b,oc_c",
-                   "LIST");
+  parser.AddString("formulations", &formulation_list,
+                   "comma-separated subset of " + FormulationNames(","), "LIST");
   parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png and DIR/trajectory.png");
   BuildFlags build_flags(&parser);
   SolverFlags solver_flags(&parser);
@@ -395,7 +395,10 @@ int RunCompare(int argc, char** argv) {
     formulations.push_back(f);
   }
   BuildOptions build_options;
-  build_flags.Finish(&build_options);
+  if (std::optional<std::string> problem = build_flags.Finish(&build_options)) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
   compat.Apply(&build_options);
   SolverOptions solver_options;
   if (std::optional<std::string> problem = solver_flags.Finish(&solver_options)) {

@@ -15,7 +15,7 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
-    {"build", "build one formulation (wc, oc_a, oc_b, oc_c) from a front-end file",
+    {"build", "build one formulation (wc, oc_a, oc_b, oc_c, hy) from a front-end file",
      dynslam::cli::RunBuild},
     {"compare", "build, solve and score every formulation; print the paper's Tables I-III",
      dynslam::cli::RunCompare},

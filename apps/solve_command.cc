@@ -8,6 +8,7 @@
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
+#include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/metrics.h"
@@ -22,7 +23,7 @@ namespace {
 void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
   const SolveReport& r = *outputs.report;
   std::string source;
-  std::printf("%s (%s)\n", outputs.input.c_str(), FormulationOf(*outputs.solved, &source).c_str());
+  std::printf("%s (%s)\n", outputs.input.c_str(), FormulationLabelOf(*outputs.solved, &source).c_str());
   std::printf("variables:");
   for (size_t i = 0; i < kAllRoles.size(); ++i) {
     if (r.variables_by_role[i] > 0) {
@@ -127,7 +128,7 @@ int RunSolve(int argc, char** argv) {
   }
 
   std::string source;
-  compat.Apply(FormulationOf(*graph, &source) == "wc", &options);
+  compat.Apply(FormulationLabelOf(*graph, &source) == "wc", &options);
   if (compat.any()) outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7)");
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {

@@ -252,7 +252,7 @@ void DefineFunctions(py::module_& m) {
                     const py::kwargs& options) {
     Formulation f;
     if (!ParseFormulation(formulation, &f)) {
-      throw py::value_error("unknown formulation '" + formulation + "' (wc, oc_a, oc_b, oc_c)");
+      throw py::value_error("unknown formulation '" + formulation + "' (" + FormulationNames() + ")");
     }
     const std::optional<GroundTruth> truth =
         gt.is_none() ? std::nullopt : std::optional<GroundTruth>(AsGroundTruth(gt));
@@ -281,4 +281,9 @@ PYBIND11_MODULE(_dynslam, m) {
   dynslam::python::DefineErrors(m);
   dynslam::python::DefineTypes(m);
   dynslam::python::DefineFunctions(m);
+  pybind11::tuple names(dynslam::Formulations().size());
+  for (size_t i = 0; i < dynslam::Formulations().size(); ++i) {
+    names[i] = dynslam::Formulations()[i].name;
+  }
+  m.attr("FORMULATIONS") = names;  // the formulation table's order (formulation.h)
 }

@@ -49,6 +49,14 @@ bool ParseMotionInit(const std::string& text, MotionInit* init) {
   return true;
 }
 
+bool ParseHybridSmoothingInfo(const std::string& text, HybridSmoothingInfo* info) {
+  if (text != "frontend" && text != "world" && text != "sigmas") return false;
+  *info = text == "frontend" ? HybridSmoothingInfo::kFrontEnd
+          : text == "world"  ? HybridSmoothingInfo::kWorld
+                             : HybridSmoothingInfo::kSigmas;
+  return true;
+}
+
 // robust_kernels={"point": ("huber", 1.345), ...}: kinds by their SPEC §1.5 names.
 void SetKernels(SolverOptions* options, py::handle value) {
   for (const auto& [key, spec] : value.cast<py::dict>()) {
@@ -109,6 +117,11 @@ BuildOptions ToBuildOptions(const py::kwargs& kwargs) {
       Plain("object_prior_rotation_variance", &O::object_prior_rotation_variance),
       Plain("object_prior_translation_variance", &O::object_prior_translation_variance),
       Plain("dsc_object_centric_noise", &O::dsc_object_centric_noise),
+      Named<O, HybridSmoothingInfo>("hybrid_smoothing_info", &O::hybrid_smoothing_info,
+                                    ParseHybridSmoothingInfo),
+      Plain("hybrid_smoothing_sigma_rotation", &O::hybrid_smoothing_sigma_rotation),
+      Plain("hybrid_smoothing_sigma_translation", &O::hybrid_smoothing_sigma_translation),
+      Plain("hybrid_anchor_sigma", &O::hybrid_anchor_sigma),
   };
   return Apply(setters, kwargs);
 }

@@ -206,6 +206,13 @@ Vertex* Graph::Find(VertexId id) {
   return it == vertices.end() ? nullptr : &it->second;
 }
 
+size_t Graph::NumVariables() const {
+  return std::count_if(vertices.begin(), vertices.end(), [](const auto& entry) {
+    const RoleInfo* role = InfoOf(entry.second.label.role);
+    return role == nullptr || !role->constant;
+  });
+}
+
 size_t Graph::NumEdges() const {
   size_t n = 0;
   ForEachEdgeVector([&](const auto& edges) { n += edges.size(); });

@@ -20,6 +20,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "dynslam/file_io.h"
+#include "dynslam/formulation.h"
 
 namespace dynslam {
 namespace {
@@ -27,8 +28,6 @@ namespace {
 // SPEC §1.2: pose-edge information is stored translation-first in the file; tangent index i
 // comes from file index kG2oIndex[i].
 constexpr int kG2oIndex[6] = {3, 4, 5, 0, 1, 2};
-
-const char* kFormulationNames[] = {"frontend", "wc", "oc_a", "oc_b", "oc_c"};
 
 // One line being parsed: its fields after the tag, and errors that name file, line and tag.
 class LineParser {
@@ -358,7 +357,7 @@ class Reader {
                  options_.repair_information ? &repaired_ : nullptr);
     if (tag == "VERTEX_SE3:QUAT") return ParsePoseVertex(p, line);
     if (tag == "VERTEX_TRACKXYZ") return ParsePointVertex(p, line);
-    if (tag == "LABEL_FORMULATION") return ParseFormulation(p, line);
+    if (tag == "LABEL_FORMULATION") return ParseFormulationLabel(p, line);
     std::optional<Status> edge;
     EdgeTypes::ForEach([&](auto* type) {
       using Edge = std::remove_pointer_t<decltype(type)>;
@@ -404,15 +403,15 @@ class Reader {
     return AddVertex(id, vertex, p);
   }
 
-  Status ParseFormulation(const LineParser& p, int64_t line) {
+  Status ParseFormulationLabel(const LineParser& p, int64_t line) {
     if (Status s = p.ExpectCount({1}, "name"); !s.ok()) return s;
     if (graph_.formulation) {
       return p.Fail("appears twice (first on line " + std::to_string(formulation_line_) + ")");
     }
     const std::string name(p.field(0));
-    if (std::find(std::begin(kFormulationNames), std::end(kFormulationNames), name) ==
-        std::end(kFormulationNames)) {
-      return p.Fail("unknown formulation '" + name + "' (frontend, wc, oc_a, oc_b or oc_c)");
+    Formulation formulation;
+    if (name != "frontend" && !ParseFormulation(name, &formulation)) {
+      return p.Fail("unknown formulation '" + name + "' (frontend, " + FormulationNames() + ")");
     }
     graph_.formulation = name;
     formulation_line_ = line;

@@ -48,11 +48,40 @@ std::map<std::pair<int64_t, int64_t>, Pose> ByObjectAndFrame(const Graph& graph,
   return poses;
 }
 
+// Object-centric or hybrid: the graph carries its object poses (SPEC §5).
 bool IsObjectCentric(const Graph& graph) {
   for (const auto& [id, vertex] : graph.vertices) {
-    if (vertex.label.role == Role::kObjectPose) return true;
+    const Role role = vertex.label.role;
+    if (role == Role::kObjectPose || role == Role::kHybridMotion) return true;
   }
   return false;
+}
+
+// Hybrid motions by (object, frame), and the pose of each one's embedded frame.
+struct HybridMotion {
+  Pose motion;
+  VertexId embedded;
+};
+std::map<std::pair<int64_t, int64_t>, HybridMotion> HybridMotions(const Graph& graph) {
+  std::map<std::pair<int64_t, int64_t>, HybridMotion> motions;
+  for (const auto& [id, vertex] : graph.vertices) {
+    const Label& label = vertex.label;
+    if (label.role == Role::kHybridMotion) {
+      motions[{label.object, label.frame}] = {vertex.pose(), label.embedded};
+    }
+  }
+  return motions;
+}
+
+// The object poses a graph carries: L variables, or hybrid L_k = H^e_k · L_e.
+std::map<std::pair<int64_t, int64_t>, Pose> CarriedObjectPoses(const Graph& graph) {
+  std::map<std::pair<int64_t, int64_t>, Pose> poses = ByObjectAndFrame(graph, Role::kObjectPose);
+  for (const auto& [key, h] : HybridMotions(graph)) {
+    if (const Vertex* embedded = graph.Find(h.embedded)) {
+      poses[key] = Compose(h.motion, embedded->pose());
+    }
+  }
+  return poses;
 }
 
 // World-centric: L_{k0} = L^gt_{k0} at the start of each run of motions at consecutive frames,
@@ -93,9 +122,21 @@ std::pair<double, double> PoseError(const Pose& estimate, const Pose& truth) {
 
 std::map<std::pair<int64_t, int64_t>, Pose> EstimatedObjectPoses(const Graph& solved,
                                                                  const GroundTruth& ground_truth) {
-  if (IsObjectCentric(solved)) return ByObjectAndFrame(solved, Role::kObjectPose);
+  if (IsObjectCentric(solved)) return CarriedObjectPoses(solved);
   int64_t skipped = 0;
-  return ComposeFromMotions(ByObjectAndFrame(solved, Role::kMotion), ground_truth, &skipped);
+  return ComposeFromMotions(EstimatedMotions(solved), ground_truth, &skipped);
+}
+
+std::map<std::pair<int64_t, int64_t>, Pose> EstimatedMotions(const Graph& solved) {
+  std::map<std::pair<int64_t, int64_t>, Pose> motions = ByObjectAndFrame(solved, Role::kMotion);
+  const auto hybrid = HybridMotions(solved);
+  for (auto it = hybrid.begin(); it != hybrid.end(); ++it) {
+    const auto [object, frame] = it->first;
+    auto previous = hybrid.find({object, frame - 1});
+    if (previous == hybrid.end() || previous->second.embedded != it->second.embedded) continue;
+    motions[it->first] = Compose(it->second.motion, Inverse(previous->second.motion));
+  }
+  return motions;
 }
 
 Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
@@ -122,7 +163,7 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
     metrics.camera.mean_trans_m /= metrics.camera.count;
   }
 
-  const auto motions = ByObjectAndFrame(solved, Role::kMotion);
+  const auto motions = EstimatedMotions(solved);
   Accumulator motion_errors;
   for (const auto& [key, motion] : motions) {
     const auto [object, frame] = key;
@@ -135,7 +176,7 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
 
   const auto poses =
       metrics.object_centric
-          ? ByObjectAndFrame(solved, Role::kObjectPose)
+          ? CarriedObjectPoses(solved)
           : ComposeFromMotions(motions, gt, &metrics.segments_without_ground_truth_start);
   Accumulator pose_errors;
   for (const auto& [key, motion] : motions) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "dynslam/file_io.h"
+#include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "src/json_io.h"
 
@@ -55,12 +56,10 @@ std::string ObjectFrameCsv(std::vector<ObjectPoseRow> rows) {
   return text;
 }
 
-std::vector<ObjectPoseRow> VariablesWithRole(const Graph& graph, Role role) {
+std::vector<ObjectPoseRow> MotionRows(const Graph& graph) {
   std::vector<ObjectPoseRow> rows;
-  for (const auto& [id, vertex] : graph.vertices) {
-    if (vertex.label.role == role) {
-      rows.push_back({vertex.label.object, vertex.label.frame, vertex.pose()});
-    }
+  for (const auto& [key, motion] : EstimatedMotions(graph)) {
+    rows.push_back({key.first, key.second, motion});
   }
   return rows;
 }
@@ -132,27 +131,11 @@ JsonValue SolverJson(const SolverOptions& options) {
 
 }  // namespace
 
-std::string FormulationOf(const Graph& graph, std::string* source) {
-  if (graph.formulation) {
-    *source = "label";
-    return *graph.formulation;
-  }
-  *source = "inferred";
-  const bool object_centric = !graph.Edges<ObjectPointEdge>().empty() ||
-                              !graph.Edges<ObjectMotionEdge>().empty() || !graph.Edges<KinematicEdge>().empty();
-  if (object_centric) {
-    if (graph.Edges<ObjectMotionEdge>().empty()) return "oc_c";
-    return graph.Edges<KinematicEdge>().empty() ? "oc_a" : "oc_b";
-  }
-  if (!graph.Edges<MotionEdge>().empty()) return "wc";
-  if (graph.Edges<PointEdge>().empty()) return "pose_graph";
-  return "static";
-}
 
 std::string SummaryJson(const SolveOutputs& outputs) {
   const SolveReport& report = *outputs.report;
   std::string source;
-  const std::string formulation = FormulationOf(*outputs.solved, &source);
+  const std::string formulation = FormulationLabelOf(*outputs.solved, &source);
 
   JsonValue variables = JsonValue::object();
   int64_t total_variables = 0;
@@ -216,7 +199,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
   if (Status s = WriteGraph(graph, (base / "solution.g2o").string()); !s.ok()) return s;
   const std::pair<const char*, std::string> files[] = {
       {"cameras.csv", CamerasCsv(graph)},
-      {"motions.csv", ObjectFrameCsv(VariablesWithRole(graph, Role::kMotion))},
+      {"motions.csv", ObjectFrameCsv(MotionRows(graph))},
       {"object_poses.csv", ObjectFrameCsv(EstimatedObjectPoseRows(outputs))},
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
       {"summary.json", SummaryJson(outputs) + "\n"},

@@ -14,6 +14,7 @@
 #include <ceres/ceres.h>
 
 #include "cost_functions/world_anchored_object_point.h"
+#include "dynslam/formulation.h"
 #include "dynslam/se3_manifold.h"
 #include "src/edge_costs.h"
 #include "src/openmp_thread_cap.h"
@@ -534,16 +535,11 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
   const bool has_points = std::any_of(graph.vertices.begin(), graph.vertices.end(), [](const auto& v) {
     return v.second.type == VertexType::kPoint;
   });
-  // Dogleg lost to LM on object-centric graphs: on simulated KITTI 0002 oc_b it ended in a basin
-  // twice the cost LM reaches (scripts/demo), and on the whole of 0006 oc_a its trust region
-  // shrank until the function tolerance stopped it 1.1e-5 above LM's optimum
-  // (docs/CONVERGENCE.md).
+  // The formulation table's rule (formulation.cc); dogleg for other graphs with points.
   if (resolved.minimizer == MinimizerType::kAuto) {
-    const bool object_centric = !graph.Edges<ObjectPointEdge>().empty() ||
-                                !graph.Edges<ObjectMotionEdge>().empty() ||
-                                !graph.Edges<KinematicEdge>().empty();
-    resolved.minimizer = has_points && !object_centric ? MinimizerType::kDogleg
-                                                       : MinimizerType::kLevenbergMarquardt;
+    const std::optional<Formulation> formulation = FormulationOfGraph(graph);
+    const bool lm = formulation ? InfoOf(*formulation).lm_by_default : !has_points;
+    resolved.minimizer = lm ? MinimizerType::kLevenbergMarquardt : MinimizerType::kDogleg;
   }
   // Sparse normal Cholesky on CHOLMOD was the fastest to the optimum on every reference graph
   // once CHOLMOD runs its supernodal factorisation in one thread (src/openmp_thread_cap.h).

@@ -446,7 +446,9 @@ TEST(FormulationEdgeCaseTest, SmoothingAcrossSegmentsIsDroppedAndReported) {
     BuildReport report;
     Expected<Graph> built = BuildFormulation(front_end, f, options, nullptr, &report, "frontend.g2o");
     ASSERT_TRUE(built.ok()) << built.error().ToString();
-    EXPECT_EQ(CountEdgesByKind(*built)[static_cast<int>(EdgeKind::kSmoothing)], 3) << FormulationName(f);
+    const EdgeKind smoothing =  // hy re-expresses each kept edge (SPEC §3.6)
+        f == Formulation::kHybrid ? EdgeKind::kHybridSmoothing : EdgeKind::kSmoothing;
+    EXPECT_EQ(CountEdgesByKind(*built)[static_cast<int>(smoothing)], 3) << FormulationName(f);
     EXPECT_EQ(report.lines[2],
               "dropped: 2 smoothing edges: they do not join motions of consecutive frames of one "
               "segment");
@@ -635,6 +637,140 @@ TEST(ObjectInitNameTest, NamesRoundTrip) {
   ObjectInit unchanged = ObjectInit::kAlign;
   EXPECT_FALSE(ParseObjectInit("kabsch", &unchanged));
   EXPECT_EQ(unchanged, ObjectInit::kAlign);
+}
+
+// SPEC §3.6 on the hand-made front end: object 9 re-appears, so with min_object_frames = 3 it
+// has two segments, each with its own embedded frame, hybrid motions (one per frame, one more
+// than the motions) and points; nothing is shared between them. Without ground truth L_e is the
+// centroid of the segment's points at its first frame.
+TEST(HybridFormulationTest, ReappearanceGivesTwoSegmentsWithTheirOwnEmbeddedFrames) {
+  const Graph front_end = ReadText(UnlabelledFrontEnd());
+  BuildOptions options;
+  options.min_object_frames = 3;
+  Expected<Graph> hy =
+      BuildFormulation(front_end, Formulation::kHybrid, options, nullptr, nullptr);
+  ASSERT_TRUE(hy.ok()) << hy.error().ToString();
+  EXPECT_EQ(Roles(*hy), (std::array<int64_t, 8>{7, 1, 0, 0, 0, 4, 7, 2}));
+  EXPECT_EQ(CountEdgesByKind(*hy),
+            (std::array<int64_t, kNumEdgeKinds>{1, 6, 0, 2, 0, 0, 0, 0, 0, 2, 14, 3}));
+  // Ids from max_id + 1 = 56 (SPEC §3.6): L_e, H^e_0..2, points A, B; L_e, H^e_3..6, C, D.
+  const Label& first = hy->Find(56)->label;
+  EXPECT_EQ(first.role, Role::kEmbeddedFrame);
+  EXPECT_EQ(first.frame, 0);
+  EXPECT_EQ(hy->Find(62)->label.role, Role::kEmbeddedFrame);
+  EXPECT_EQ(hy->Find(62)->label.frame, 3);
+  for (const VertexId id : {57, 58, 59}) EXPECT_EQ(hy->Find(id)->label.embedded, 56);
+  for (const VertexId id : {63, 64, 65, 66}) EXPECT_EQ(hy->Find(id)->label.embedded, 62);
+  EXPECT_EQ(hy->Find(66)->label.frame, 6);
+  EXPECT_EQ(hy->Find(60)->label.tracklet, 1);
+  EXPECT_EQ(hy->Find(68)->label.tracklet, 4);
+  // L_e = centroid of A(0, 1, 10) and B(0.5, 1, 10); H^e_0 = I, H^e_2 = H_2 · H_1 = t(2, 0, 0);
+  // m_A = L_e⁻¹ · (H^e_0)⁻¹ · (0, 1, 10) = (−0.25, 0, 0).
+  EXPECT_EQ(hy->Find(56)->pose().translation(), Eigen::Vector3d(0.25, 1, 10));
+  EXPECT_EQ(hy->Find(56)->pose().rotation().w(), 1);
+  EXPECT_EQ(hy->Find(57)->pose().translation(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(hy->Find(59)->pose().translation(), Eigen::Vector3d(2, 0, 0));
+  EXPECT_EQ(hy->Find(60)->point(), Eigen::Vector3d(-0.25, 0, 0));
+  // Anchors on each segment's first motion; smoothing re-expressed on three motions.
+  std::set<VertexId> anchored;
+  for (const PriorEdge& e : hy->Edges<PriorEdge>()) {
+    if (e.information(0, 0) == 1e12) anchored.insert(e.pose);
+  }
+  EXPECT_EQ(anchored, (std::set<VertexId>{57, 63}));
+  std::set<std::array<VertexId, 4>> smoothing;
+  for (const HybridSmoothingEdge& e : hy->Edges<HybridSmoothingEdge>()) {
+    smoothing.insert({e.motion_a, e.motion_b, e.motion_c, e.embedded});
+  }
+  EXPECT_EQ(smoothing, (std::set<std::array<VertexId, 4>>{
+                           {57, 58, 59, 56}, {63, 64, 65, 62}, {64, 65, 66, 62}}));
+}
+
+TEST(HybridFormulationTest, SegmentsShorterThanMinObjectFramesAreDropped) {
+  const Graph front_end = ReadText(UnlabelledFrontEnd());
+  BuildReport report;
+  Expected<Graph> hy = BuildFormulation(front_end, Formulation::kHybrid, BuildOptions{}, nullptr,
+                                        &report, "frontend.g2o");
+  ASSERT_TRUE(hy.ok()) << hy.error().ToString();
+  EXPECT_EQ(report.lines[2].rfind("dropped: object 9 frames 0..2 (3 frames) < 5", 0), 0u);
+  EXPECT_EQ(Roles(*hy), (std::array<int64_t, 8>{7, 1, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(CountEdgesByKind(*hy), (std::array<int64_t, kNumEdgeKinds>{1, 6, 0, 2}));
+}
+
+std::string WrittenHybrid() {
+  BuildOptions options;
+  options.min_object_frames = 3;
+  Expected<Graph> hy =
+      BuildFormulation(ReadText(UnlabelledFrontEnd()), Formulation::kHybrid, options, nullptr,
+                       nullptr);
+  EXPECT_TRUE(hy.ok());
+  std::ostringstream out;
+  WriteGraph(*hy, out);
+  return out.str();
+}
+
+// Build → write → read → write gives the same bytes; the formulation comes from the label, and
+// without labels from the edges, whose fields give every role (embedded frames included).
+TEST(HybridFormulationTest, RoundTripAndUnlabelledRoles) {
+  const std::string text = WrittenHybrid();
+  Graph read = ReadText(text);
+  std::ostringstream again;
+  WriteGraph(read, again);
+  EXPECT_EQ(again.str(), text);
+  std::string source;
+  EXPECT_EQ(FormulationOfGraph(read, &source), Formulation::kHybrid);
+  EXPECT_EQ(source, "label");
+
+  std::string unlabelled;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("LABEL_", 0) != 0) unlabelled += line + "\n";
+  }
+  Graph bare = ReadText(unlabelled);
+  EXPECT_EQ(FormulationOfGraph(bare, &source), Formulation::kHybrid);
+  EXPECT_EQ(source, "inferred");
+  EXPECT_EQ(bare.Find(56)->label.role, Role::kEmbeddedFrame);
+  EXPECT_EQ(bare.Find(66)->label.role, Role::kHybridMotion);
+  EXPECT_EQ(bare.Find(68)->label.role, Role::kObjectPoint);
+}
+
+// Labels that contradict the fields (SPEC §3.6 consistency): an error naming the edge's line.
+TEST(HybridFormulationTest, LabelsThatContradictTheFieldsAreErrors) {
+  const std::string text = WrittenHybrid();
+  auto line_of = [&](const std::string& prefix) {
+    std::istringstream lines(text);
+    int64_t n = 0;
+    for (std::string line; std::getline(lines, line);) {
+      ++n;
+      if (line.rfind(prefix, 0) == 0) return n;
+    }
+    return int64_t{0};
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string changed = text;
+    const size_t at = changed.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return changed.replace(at, from.size(), to);
+  };
+  struct Case {
+    std::string from, to, edge, message;
+  };
+  const Case cases[] = {
+      {"LABEL_HYBRID_MOTION 58 9 1 56", "LABEL_HYBRID_MOTION 58 9 1 62",
+       "EDGE_SE3_HY_TRACKXYZ 1 58 ",
+       "names embedded frame 56, but its motion at frame 1 is labelled with embedded frame 62"},
+      {"LABEL_HYBRID_MOTION 58 9 1 56", "LABEL_HYBRID_MOTION 58 9 2 56",
+       "EDGE_SE3_HY_TRACKXYZ 1 58 ", "joins a camera at frame 1 and a motion at frame 2"},
+      {"LABEL_EMBEDDED_FRAME 62 9 3", "LABEL_EMBEDDED_FRAME 62 9 5", "EDGE_SE3_HY_TRACKXYZ 3 63 ",
+       "must be of the motion's object 9 and not later than its frame 3"},
+  };
+  for (const Case& c : cases) {
+    std::istringstream in(replaced(c.from, c.to));
+    Expected<Graph> graph = ReadGraph(in, "hy.g2o");
+    ASSERT_FALSE(graph.ok()) << c.to;
+    EXPECT_EQ(graph.error().file, "hy.g2o");
+    EXPECT_EQ(graph.error().line, line_of(c.edge)) << graph.error().ToString();
+    EXPECT_NE(graph.error().message.find(c.message), std::string::npos) << graph.error().ToString();
+  }
 }
 
 }  // namespace

@@ -527,6 +527,13 @@ TEST(GraphIoTest, FailedWriteKeepsTheExistingFile) {
 
 class ReferenceGraphIoTest : public ::testing::TestWithParam<testing::ReferenceGraph> {};
 
+// A count in a reference summary.json; summaries written before SPEC §3.6 do not list the
+// hybrid's roles and edge kinds, which then count 0.
+double SummaryCount(const JsonValue& summary, const char* section, const char* name) {
+  const double count = NumberAt(summary, {section, name});
+  return std::isnan(count) ? 0 : count;
+}
+
 // Roles and kinds as GTSAM's reference summary counts them, and a bit-exact round trip.
 TEST_P(ReferenceGraphIoTest, CountsMatchReferenceAndRoundTripIsBitExact) {
   const testing::ReferenceGraph& reference = GetParam();
@@ -537,12 +544,11 @@ TEST_P(ReferenceGraphIoTest, CountsMatchReferenceAndRoundTripIsBitExact) {
   for (const Role role : kAllRoles) {
     int64_t count = 0;
     for (const auto& [id, vertex] : graph->vertices) count += vertex.label.role == role;
-    EXPECT_EQ(count, NumberAt(*summary, {"variables", RoleName(role)})) << RoleName(role);
+    EXPECT_EQ(count, SummaryCount(*summary, "variables", RoleName(role))) << RoleName(role);
   }
   const auto counts = CountEdgesByKind(*graph);
   for (const EdgeKind kind : kAllEdgeKinds) {
-    EXPECT_EQ(counts[static_cast<int>(kind)],
-              NumberAt(*summary, {"edges", EdgeKindName(kind)}))
+    EXPECT_EQ(counts[static_cast<int>(kind)], SummaryCount(*summary, "edges", EdgeKindName(kind)))
         << EdgeKindName(kind);
   }
   std::ostringstream out;
@@ -632,7 +638,7 @@ TEST_P(ReferenceSolutionIoTest, RolesMatchTheSummary) {
   for (const Role role : kAllRoles) {
     int64_t count = 0;
     for (const auto& [id, vertex] : graph->vertices) count += vertex.label.role == role;
-    EXPECT_EQ(count, NumberAt(*summary, {"variables", RoleName(role)})) << RoleName(role);
+    EXPECT_EQ(count, SummaryCount(*summary, "variables", RoleName(role))) << RoleName(role);
   }
 }
 

@@ -44,9 +44,12 @@ TEST_P(InitialCostTest, MatchesGtsamInTotalAndPerKind) {
   EXPECT_LE(testing::RelativeDifference(total, expected_total), tolerance)
       << "total " << total << " vs GTSAM " << expected_total;
   for (const EdgeKind kind : kAllEdgeKinds) {
-    const double expected = NumberAt(*summary, {"cost_by_kind", "initial", EdgeKindName(kind)});
-    ASSERT_FALSE(std::isnan(expected)) << EdgeKindName(kind);
     const double ours = (*cost)[static_cast<int>(kind)];
+    const double expected = NumberAt(*summary, {"cost_by_kind", "initial", EdgeKindName(kind)});
+    if (std::isnan(expected)) {  // summaries written before SPEC §3.6 lack the hybrid's kinds
+      EXPECT_EQ(ours, 0) << EdgeKindName(kind);
+      continue;
+    }
     EXPECT_LE(std::abs(ours - expected), tolerance * std::abs(expected) + 1e-15 * expected_total)
         << EdgeKindName(kind) << ": " << ours << " vs GTSAM " << expected;
   }

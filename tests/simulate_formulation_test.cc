@@ -1,7 +1,8 @@
 // Simulated front ends through the formulation builder (SPEC §3) and the solver's cost
 // (SPEC §1.5): without noise, the initial values of a simulated front end are the truth, and the
 // cost of every formulation built from it is 0 for every edge kind but smoothing (whose Z = I
-// is the constant-motion assumption: at the truth its residual is the true change of motion).
+// is the constant-motion assumption: at the truth its residual is the true change of motion;
+// likewise hy's smoothing edge, which has no measurement, SPEC §3.6).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@ void CheckFormulationsExactAtTruth(const Scene& scene) {
   Expected<SimulatedScene> sim = Simulate(scene, options);
   ASSERT_TRUE(sim.ok()) << sim.error().ToString();
   double smoothing_cost = -1;
+  int64_t smoothing_edges = -1;
   for (const Formulation formulation : kAllFormulations) {
     SCOPED_TRACE(FormulationName(formulation));
     BuildReport report;
@@ -32,14 +34,21 @@ void CheckFormulationsExactAtTruth(const Scene& scene) {
     const auto counts = CountEdgesByKind(*built);
     for (const EdgeKind kind : kAllEdgeKinds) {
       const int i = static_cast<int>(kind);
-      if (kind == EdgeKind::kSmoothing) continue;
+      if (kind == EdgeKind::kSmoothing || kind == EdgeKind::kHybridSmoothing) continue;
       EXPECT_LT((*cost)[i], 1e-12 * std::max<int64_t>(counts[i], 1)) << EdgeKindName(kind);
     }
     EXPECT_GT(counts[static_cast<int>(EdgeKind::kMotion)] +
                   counts[static_cast<int>(EdgeKind::kObjectMotion)] +
-                  counts[static_cast<int>(EdgeKind::kKinematic)],
+                  counts[static_cast<int>(EdgeKind::kKinematic)] +
+                  counts[static_cast<int>(EdgeKind::kHybridPoint)],
               0);
+    if (formulation == Formulation::kHybrid) {  // one re-expressed edge per front-end edge kept
+      EXPECT_EQ(counts[static_cast<int>(EdgeKind::kHybridSmoothing)], smoothing_edges);
+      EXPECT_EQ(counts[static_cast<int>(EdgeKind::kSmoothing)], 0);
+      continue;
+    }
     // Identical data in every formulation: the same smoothing edges, the same cost.
+    smoothing_edges = counts[static_cast<int>(EdgeKind::kSmoothing)];
     const double smoothing = (*cost)[static_cast<int>(EdgeKind::kSmoothing)];
     if (smoothing_cost < 0) smoothing_cost = smoothing;
     EXPECT_NEAR(smoothing, smoothing_cost, 1e-9 * smoothing_cost);

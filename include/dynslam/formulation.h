@@ -1,4 +1,5 @@
-// Front-end file → world-centric or object-centric graph (SPEC §3; paper Figs. 2 and 3).
+// Front-end file → world-centric, object-centric or hybrid graph (SPEC §3; paper Figs. 2 and 3;
+// DynoSAM's hybrid, §3.6).
 //
 // Every formulation built from one front-end file sees identical data: the same cameras,
 // measurements, tracklets, object segments and initial values. What is dropped (tracklets of
@@ -7,6 +8,7 @@
 #ifndef DYNSLAM_FORMULATION_H_
 #define DYNSLAM_FORMULATION_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,13 +18,46 @@
 
 namespace dynslam {
 
-enum class Formulation { kWorldCentric, kObjectCentricA, kObjectCentricB, kObjectCentricC };
+enum class Formulation {
+  kWorldCentric,
+  kObjectCentricA,
+  kObjectCentricB,
+  kObjectCentricC,
+  kHybrid,
+};
+
+// One row per formulation: everything that tells them apart outside their build step.
+struct FormulationInfo {
+  Formulation formulation;
+  const char* name;     // LABEL_FORMULATION value and CLI name (SPEC §1.4)
+  const char* summary;  // for help texts
+  bool object_frame_points;  // points fixed in an object frame (else one world point per frame)
+  // The formulation-specific edge kinds it emits (§3.2, §3.3, §3.6; the shared prior, odometry
+  // and static point edges left out), and those a file must have to be taken for it when it
+  // carries no LABEL_FORMULATION.
+  std::vector<EdgeKind> emits;
+  std::vector<EdgeKind> identified_by;
+  bool lm_by_default;  // SolverOptions minimizer `auto`: LM (else dogleg), docs/SOLVER.md
+};
+
 inline constexpr Formulation kAllFormulations[] = {
     Formulation::kWorldCentric, Formulation::kObjectCentricA, Formulation::kObjectCentricB,
-    Formulation::kObjectCentricC};
+    Formulation::kObjectCentricC, Formulation::kHybrid};
 
-const char* FormulationName(Formulation formulation);  // "wc", "oc_a", "oc_b", "oc_c"
+// The table, in the order of kAllFormulations (SPEC §3, `compare`'s columns).
+const std::vector<FormulationInfo>& Formulations();
+const FormulationInfo& InfoOf(Formulation formulation);
+const char* FormulationName(Formulation formulation);  // "wc", "oc_a", "oc_b", "oc_c", "hy"
 bool ParseFormulation(const std::string& text, Formulation* formulation);
+// "wc, oc_a, oc_b, oc_c, hy" joined by `separator`.
+std::string FormulationNames(const char* separator = ", ");
+
+// The formulation of a graph: its LABEL_FORMULATION, else the row whose `identified_by` kinds
+// are all present and whose `emits` cover every formulation-specific kind present. Empty for a
+// front end, a static graph or a pose graph; `source` (optional) says "label" or "inferred".
+std::optional<Formulation> FormulationOfGraph(const Graph& graph, std::string* source = nullptr);
+// FormulationOfGraph's name, or "frontend", "static", "pose_graph", "mixed" for the others.
+std::string FormulationLabelOf(const Graph& graph, std::string* source = nullptr);
 
 // Initial object poses after a segment's first frame (SPEC §3.3, §3.5):
 // kMotion  L_k = H_k · L_{k−1} with the initial motion: the kinematic edge starts at zero;
@@ -38,6 +73,13 @@ bool ParseObjectInit(const std::string& text, ObjectInit* rule);
 
 enum class MotionInit { kFrontEnd, kIdentity };
 
+// SPEC §3.6 `hybrid_smoothing_info`: the information of EDGE_SE3_HY_SMOOTHING.
+// kFrontEnd  the front-end smoothing edge's information as written;
+// kWorld     that information mapped into the body frame, Ad(L_e)ᵀ · Ω · Ad(L_e), so that the
+//            prior is as strong as wc's world-frame smoothing;
+// kSigmas    1/σ_r² on ω and 1/σ_t² on ρ (DynoSAM: 0.01 rad, 0.1 m).
+enum class HybridSmoothingInfo { kFrontEnd, kWorld, kSigmas };
+
 // SPEC §3.5.
 struct BuildOptions {
   int min_object_frames = 5;
@@ -52,6 +94,11 @@ struct BuildOptions {
   // σ = 0.2, and a segment's first pose the ground-truth translation with identity rotation.
   // (Item 4, identity motions, is motion_init = kIdentity.)
   bool dsc_object_centric_noise = false;
+  // SPEC §3.6.
+  HybridSmoothingInfo hybrid_smoothing_info = HybridSmoothingInfo::kFrontEnd;
+  double hybrid_smoothing_sigma_rotation = 0.01;    // rad, with kSigmas
+  double hybrid_smoothing_sigma_translation = 0.1;  // m, with kSigmas
+  double hybrid_anchor_sigma = 1e-6;  // prior on each segment's first hybrid motion at I
 };
 
 struct BuildReport {
@@ -61,7 +108,7 @@ struct BuildReport {
 };
 
 // `front_end` must have roles assigned (ReadGraph does). `ground_truth` may be null (then the
-// first pose of each segment is initialised from its points, SPEC §3.3). `name` is used in the
+// first pose of each segment, and hy's embedded frame, is initialised from its points, SPEC §3.3). `name` is used in the
 // report's first line.
 Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation,
                                  const BuildOptions& options, const GroundTruth* ground_truth,

@@ -65,6 +65,8 @@ struct Graph {
   const Vertex* Find(VertexId id) const;
   Vertex* Find(VertexId id);
   size_t NumEdges() const;
+  // Vertices but constants (roles with RoleInfo::constant: hy's embedded frames).
+  size_t NumVariables() const;
 };
 
 // Kind of an edge from the roles of its vertices (SPEC §1.5; each struct's `Kind`). Requires

@@ -45,9 +45,14 @@ std::pair<double, double> PoseError(const Pose& estimate, const Pose& truth);
 Metrics ComputeMetrics(const Graph& solved, const GroundTruth& ground_truth);
 
 // World-centric object poses as composed for the metrics, by (object, frame); object-centric
-// graphs return their L variables. Used for object_poses.csv (SPEC §4).
+// graphs return their L variables, hybrid graphs H^e_k · L_e (SPEC §3.6). Used for
+// object_poses.csv (SPEC §4).
 std::map<std::pair<int64_t, int64_t>, Pose> EstimatedObjectPoses(const Graph& solved,
                                                                  const GroundTruth& ground_truth);
+
+// Frame-to-frame object motions H^W_{k−1,k} by (object, frame k): the motion variables, or for
+// a hybrid graph H^e_k · (H^e_{k−1})⁻¹ within each segment (SPEC §3.6). motions.csv (SPEC §4).
+std::map<std::pair<int64_t, int64_t>, Pose> EstimatedMotions(const Graph& solved);
 
 // The metrics as the reference set's metrics.json writes them (SPEC §5), as JSON text.
 std::string MetricsJson(const Metrics& metrics);

@@ -39,10 +39,6 @@ struct SolveOutputs {
   double export_rate_hz = 10;  // KITTI Tracking's frame rate
 };
 
-// "wc", "oc_b", … from LABEL_FORMULATION; otherwise inferred from the edges ("pose_graph" when
-// there are only poses). `source` receives "label" or "inferred".
-std::string FormulationOf(const Graph& graph, std::string* source);
-
 // summary.json's text (SPEC §4), without the trailing newline.
 std::string SummaryJson(const SolveOutputs& outputs);
 
