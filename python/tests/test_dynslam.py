@@ -64,6 +64,22 @@ def test_build_matches_the_reference_graph_counts():
     assert built.formulation == "oc_b"
 
 
+def test_hybrid_builds_the_reference_graph_and_solves_with_world_information():
+    frontend = dynslam.read_graph(os.path.join(SCENE, "frontend.g2o"))
+    built = dynslam.build(frontend, "hy", GT)
+    reference = dynslam.read_graph(os.path.join(ROOT, "data", "reference_hybrid", "synthetic",
+                                                "graphs", "hy.g2o"))
+    assert dynslam.FORMULATIONS[-1] == "hy"
+    assert built.edges_by_kind == reference.edges_by_kind
+    assert built.formulation == "hy"
+    world = dynslam.build(frontend, "hy", GT, hybrid_smoothing_info="world")
+    assert world.edges_by_kind == built.edges_by_kind
+    with pytest.raises(ValueError):
+        dynslam.build(frontend, "hy", GT, hybrid_smoothing_info="body")
+    report = dynslam.solve(world, max_iterations=3)
+    assert report.final_cost < report.initial_cost
+
+
 def test_solve_reaches_the_cli_final_cost(cli_solve):
     report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")))
     assert report.usable and report.termination == cli_solve["termination"]
