@@ -65,18 +65,9 @@ Status InferRoles(Graph& graph) {
   RoleClaims claims;
   graph.ForEachEdgeVector([&](const auto& edges) {
     for (const auto& e : edges) {
-      struct Claimer : IgnoreFields {
-        RoleClaims* claims;
-        int64_t line;
-        const char* tag;
-        void Vertex(const VertexField& field, VertexId id) {
-          if (field.claim != Role::kUnknown) claims->Claim(id, field.claim, line, tag);
-        }
-      } claimer;
-      claimer.claims = &claims;
-      claimer.line = e.line;
-      claimer.tag = e.kTag;
-      e.Fields(e, claimer);
+      ForEachVertexField(e, [&](const VertexField& field, VertexId id) {
+        if (field.claim != Role::kUnknown) claims.Claim(id, field.claim, e.line, e.kTag);
+      });
     }
   });
   if (!claims.status().ok()) return claims.status();
@@ -106,20 +97,9 @@ Status CheckLabelledRoles(const Graph& graph) {
   Status status;
   graph.ForEachEdgeVector([&](const auto& edges) {
     for (const auto& e : edges) {
-      struct Checker : IgnoreFields {
-        const Graph* graph;
-        Status* status;
-        int64_t line;
-        const char* tag;
-        void Vertex(const VertexField& field, VertexId id) {
-          if (status->ok()) *status = Expect(*graph, id, field.allowed, line, tag, field.name);
-        }
-      } checker;
-      checker.graph = &graph;
-      checker.status = &status;
-      checker.line = e.line;
-      checker.tag = e.kTag;
-      e.Fields(e, checker);
+      ForEachVertexField(e, [&](const VertexField& field, VertexId id) {
+        if (status.ok()) status = Expect(graph, id, field.allowed, e.line, e.kTag, field.name);
+      });
     }
   });
   if (!status.ok()) return status;

@@ -461,20 +461,9 @@ class Reader {
     Status status;
     graph_.ForEachEdgeVector([&](const auto& edges) {
       for (const auto& e : edges) {
-        struct Checker : IgnoreFields {
-          const Reader* reader;
-          Status* status;
-          int64_t line;
-          const char* tag;
-          void Vertex(const VertexField& field, VertexId id) {
-            if (status->ok()) *status = reader->CheckReference(id, field, line, tag);
-          }
-        } checker;
-        checker.reader = this;
-        checker.status = &status;
-        checker.line = e.line;
-        checker.tag = e.kTag;
-        e.Fields(e, checker);
+        ForEachVertexField(e, [&](const VertexField& field, VertexId id) {
+          if (status.ok()) status = CheckReference(id, field, e.line, e.kTag);
+        });
       }
     });
     return status;

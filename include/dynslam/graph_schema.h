@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -192,8 +193,19 @@ struct IgnoreFields {
   void Information(const T&) {}
 };
 
+// The hooks of an edge struct that most tags leave empty; a struct that needs one hides it.
+struct EdgeDefaults {
+  const char* Invalid() const { return ""; }
+  template <typename LabelOf>
+  std::string Inconsistent(const LabelOf&) const {
+    return "";
+  }
+  template <typename LabelAt>
+  void Infer(const LabelAt&) const {}
+};
+
 // SPEC §1.2 EDGE_SE3_PRIOR: r = Log(Z⁻¹ · X).
-struct PriorEdge {
+struct PriorEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_PRIOR";
   VertexId pose = 0;
   Pose measurement;
@@ -216,17 +228,10 @@ struct PriorEdge {
     return role == Role::kObjectPose || role == Role::kHybridMotion ? EdgeKind::kObjectPrior
                                                                      : EdgeKind::kPrior;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §1.2 EDGE_SE3:QUAT: r = Log(Z⁻¹ · A⁻¹ · B). Odometry (cameras) or smoothing (motions).
-struct BetweenEdge {
+struct BetweenEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3:QUAT";
   VertexId from = 0;  // A
   VertexId to = 0;    // B
@@ -245,17 +250,10 @@ struct BetweenEdge {
   EdgeKind Kind(const RoleOf& role_of) const {
     return role_of(from) == Role::kMotion ? EdgeKind::kSmoothing : EdgeKind::kOdometry;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §1.2 EDGE_SE3_TRACKXYZ: r = X⁻¹ · m − z.
-struct PointEdge {
+struct PointEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_TRACKXYZ";
   VertexId pose = 0;
   VertexId point = 0;
@@ -277,17 +275,10 @@ struct PointEdge {
   EdgeKind Kind(const RoleOf& role_of) const {
     return role_of(point) == Role::kDynamicPoint ? EdgeKind::kDynamicPoint : EdgeKind::kPoint;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §1.2 EDGE_SE3_MOTION: r = m_curr − H · m_prev − z (ternary world-centric motion edge).
-struct MotionEdge {
+struct MotionEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_MOTION";
   VertexId prev = 0;
   VertexId curr = 0;
@@ -314,7 +305,7 @@ struct MotionEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kMotion;
   }
-  const char* Invalid() const {
+  const char* Invalid() const {  // hides EdgeDefaults'
     return frame < 1 ? "frame must be at least 1 (the current point's frame k)" : "";
   }
   template <typename LabelOf>
@@ -346,7 +337,7 @@ struct MotionEdge {
 };
 
 // SPEC §1.3 EDGE_SE3_OBJ_TRACKXYZ: r = X⁻¹ · L · m_L − z.
-struct ObjectPointEdge {
+struct ObjectPointEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_OBJ_TRACKXYZ";
   VertexId camera = 0;
   VertexId object_pose = 0;
@@ -368,17 +359,10 @@ struct ObjectPointEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kObjectPoint;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §1.3 EDGE_SE3_OBJ_MOTION: r = L_curr · m_L − H · L_prev · m_L.
-struct ObjectMotionEdge {
+struct ObjectMotionEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_OBJ_MOTION";
   VertexId pose_prev = 0;
   VertexId pose_curr = 0;
@@ -401,17 +385,10 @@ struct ObjectMotionEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kObjectMotion;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §1.3 EDGE_SE3_OBJ_KINEMATIC: r = Log(L_curr⁻¹ · H · L_prev).
-struct KinematicEdge {
+struct KinematicEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_OBJ_KINEMATIC";
   VertexId pose_prev = 0;
   VertexId pose_curr = 0;
@@ -432,17 +409,10 @@ struct KinematicEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kKinematic;
   }
-  const char* Invalid() const { return ""; }
-  template <typename LabelOf>
-  std::string Inconsistent(const LabelOf&) const {
-    return "";
-  }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // SPEC §3.6 EDGE_SE3_HY_TRACKXYZ: r = X⁻¹ · H · L_e · m − z.
-struct HybridPointEdge {
+struct HybridPointEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_HY_TRACKXYZ";
   VertexId camera = 0;
   VertexId motion = 0;    // H^e_k
@@ -466,7 +436,6 @@ struct HybridPointEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kHybridPoint;
   }
-  const char* Invalid() const { return ""; }
   // The camera's frame is the motion's, motion and point are of one object, the motion's
   // embedded frame is the edge's and not later than the motion.
   template <typename LabelOf>
@@ -483,8 +452,6 @@ struct HybridPointEdge {
     }
     return HybridMotionAgrees(tag, h, embedded, label_of(embedded));
   }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 
   // Shared with HybridSmoothingEdge: `h` is a motion from embedded frame `id` (labelled `l_e`).
   static std::string HybridMotionAgrees(const std::string& tag, const Label& h, VertexId id,
@@ -505,7 +472,7 @@ struct HybridPointEdge {
 };
 
 // SPEC §3.6 EDGE_SE3_HY_SMOOTHING: r = Log((L_a⁻¹ L_b)⁻¹ (L_b⁻¹ L_c)), L_x = H_x · L_e.
-struct HybridSmoothingEdge {
+struct HybridSmoothingEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_HY_SMOOTHING";
   VertexId motion_a = 0;  // H^e_{k−2}
   VertexId motion_b = 0;  // H^e_{k−1}
@@ -528,7 +495,6 @@ struct HybridSmoothingEdge {
   EdgeKind Kind(const RoleOf&) const {
     return EdgeKind::kHybridSmoothing;
   }
-  const char* Invalid() const { return ""; }
   // Motions of one object at frames k−2, k−1, k, all from the edge's embedded frame.
   template <typename LabelOf>
   std::string Inconsistent(const LabelOf& label_of) const {
@@ -548,8 +514,6 @@ struct HybridSmoothingEdge {
     }
     return "";
   }
-  template <typename LabelAt>
-  void Infer(const LabelAt&) const {}
 };
 
 // Every edge struct, in the order the reader looks tags up and the solver adds residuals.
@@ -564,19 +528,25 @@ struct TypeList {
 using EdgeTypes = TypeList<PriorEdge, BetweenEdge, PointEdge, MotionEdge, ObjectPointEdge,
                            ObjectMotionEdge, KinematicEdge, HybridPointEdge, HybridSmoothingEdge>;
 
+// f(const VertexField&, VertexId) for every vertex field of `edge`, in file order.
+template <typename Edge, typename F>
+void ForEachVertexField(const Edge& edge, F&& f) {
+  struct Visit : IgnoreFields {
+    std::remove_reference_t<F>* f;
+    void Vertex(const VertexField& field, VertexId id) { (*f)(field, id); }
+  } visit;
+  visit.f = &f;
+  Edge::Fields(edge, visit);
+}
+
 // Ids of an edge's vertex fields in file order; `parameters_only` leaves out references.
 template <typename Edge>
 std::vector<VertexId> VertexIds(const Edge& edge, bool parameters_only = false) {
-  struct Collect : IgnoreFields {
-    std::vector<VertexId> ids;
-    bool parameters_only;
-    void Vertex(const VertexField& field, VertexId id) {
-      if (field.parameter || !parameters_only) ids.push_back(id);
-    }
-  } collect;
-  collect.parameters_only = parameters_only;
-  Edge::Fields(edge, collect);
-  return collect.ids;
+  std::vector<VertexId> ids;
+  ForEachVertexField(edge, [&](const VertexField& field, VertexId id) {
+    if (field.parameter || !parameters_only) ids.push_back(id);
+  });
+  return ids;
 }
 
 }  // namespace dynslam
