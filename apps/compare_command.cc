@@ -453,7 +453,10 @@ int RunCompare(int argc, char** argv) {
   } else {
     TablesWithoutGroundTruth(rows, &markdown, &csv);
   }
-  if (compat.any()) markdown = "(--compat " + compat.Describe() + ": the released code's choices, SPEC §7)\n\n" + markdown;
+  if (compat.any()) {
+    markdown = "(--compat " + compat.Describe() +
+               ": the released code's or DynoSAM's choices, SPEC §7, §3.6)\n\n" + markdown;
+  }
   for (const auto& [name, text] : {std::pair{"tables.csv", &csv}, std::pair{"tables.md", &markdown}}) {
     if (Status s = WriteFileAtomically((fs::path(out_dir) / name).string(), *text); !s.ok()) {
       std::cerr << "error: " << s.error().ToString() << "\n";

@@ -1,4 +1,5 @@
-// --compat: the released code's choices (SPEC §7), all ("dsc") or by item number ("1,3").
+// --compat: the released code's choices (SPEC §7), all ("dsc") or by item number ("1,3"), and
+// DynoSAM's for the hybrid formulation (SPEC §3.6), all ("dynosam") or some ("dynosam:1,3").
 // Each item maps onto a library switch of the reader, the builder or the solver; none is a
 // default (docs/COMPAT.md).
 #ifndef DYNSLAM_APPS_COMPAT_FLAGS_H_
@@ -30,7 +31,8 @@ class CompatFlags {
 
  private:
   std::string text_ = "none";
-  std::array<bool, 9> item_{};  // items 1–8 of SPEC §7
+  std::array<bool, 9> item_{};     // items 1–8 of SPEC §7
+  std::array<bool, 5> dynosam_{};  // items 1–4 of SPEC §3.6 --compat dynosam
 };
 
 }  // namespace dynslam::cli

@@ -129,7 +129,7 @@ int RunSolve(int argc, char** argv) {
 
   std::string source;
   compat.Apply(FormulationLabelOf(*graph, &source) == "wc", &options);
-  if (compat.any()) outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7)");
+  if (compat.any()) outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7, §3.6)");
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();

@@ -122,6 +122,9 @@ BuildOptions ToBuildOptions(const py::kwargs& kwargs) {
       Plain("hybrid_smoothing_sigma_rotation", &O::hybrid_smoothing_sigma_rotation),
       Plain("hybrid_smoothing_sigma_translation", &O::hybrid_smoothing_sigma_translation),
       Plain("hybrid_anchor_sigma", &O::hybrid_anchor_sigma),
+      Plain("dynosam_smoothing", &O::dynosam_smoothing),
+      Plain("dynosam_embedded_frame", &O::dynosam_embedded_frame),
+      Plain("dynosam_points_from_measurements", &O::dynosam_points_from_measurements),
   };
   return Apply(setters, kwargs);
 }

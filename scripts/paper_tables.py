@@ -6,7 +6,7 @@ and the scene statistics of each simulated sequence (OUT/kitti_NNNN/simulate.txt
 
     scripts/paper_tables.py OUT [--out OUT/paper_tables.md]
 
-The paper's numbers below are typed from its LaTeX source (../shared/paper): they are the
+The paper's numbers below are typed from its LaTeX source (Morris, Wang, Ila, ICRA 2024): they are the
 published values, not outputs of this code. Columns: object-centric (oc_a), with OKF (oc_b),
 only OKF (oc_c), world-centric (wc). The paper's Table I has no oc_c column.
 """

@@ -83,6 +83,10 @@ class Builder {
   bool PoseFromTruth(int64_t object, int64_t k, Pose* pose);
   // The centroid of the initial world points of `segment` at frame k, identity rotation.
   Pose Centroid(const Segment& segment, int64_t k) const;
+  // --compat dynosam (§3.6): X_k · mean of every measurement z of the object at k (dropped
+  // tracklets included), identity rotation; a point's world position from its measurement.
+  Pose MeasuredCentroid(int64_t object, int64_t k) const;
+  Eigen::Vector3d MeasuredWorldPoint(VertexId point) const;
 
   // The build steps: every formulation starts with AddShared; then its own.
   void AddShared(Graph& out, bool with_motions) const;
@@ -407,6 +411,25 @@ bool Builder::PoseFromTruth(int64_t object, int64_t k, Pose* pose) {
   return true;
 }
 
+Eigen::Vector3d Builder::MeasuredWorldPoint(VertexId point) const {
+  const PointEdge& observation = *dynamic_observation_.at(point);
+  return Transform(fe_.Find(observation.pose)->pose(), observation.measurement);
+}
+
+Pose Builder::MeasuredCentroid(int64_t object, int64_t k) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int64_t n = 0;
+  for (const auto& [id, vertex] : fe_.vertices) {  // by id: a reproducible sum
+    const Label& label = vertex.label;
+    if (label.role != Role::kDynamicPoint || label.object != object || label.frame != k) continue;
+    sum += dynamic_observation_.at(id)->measurement;
+    ++n;
+  }
+  const Pose camera = fe_.Find(camera_of_frame_.at(k))->pose();
+  return Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(),
+                                       Transform(camera, sum / static_cast<double>(n)));
+}
+
 Pose Builder::Centroid(const Segment& segment, int64_t k) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int64_t n = 0;
@@ -624,24 +647,39 @@ void Builder::AddHybrid(Graph& out) {
     AddHybridSegment(segment, &next_id, out, &motion_ids[segment.object]);
     for (int64_t k = segment.first; k <= segment.last; ++k) embedded_of[segment.object][k] = embedded;
   }
-  for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
-    if (fe_.Find(e.from)->label.role != Role::kMotion || !KeptSmoothing(e)) continue;
-    const Label& a = fe_.Find(e.from)->label;
-    const int64_t k = std::max(a.frame, fe_.Find(e.to)->label.frame);
-    const std::map<int64_t, VertexId>& ids = motion_ids.at(a.object);
+  auto add_smoothing = [&](int64_t object, int64_t k, const Matrix6d& information) {
+    const std::map<int64_t, VertexId>& ids = motion_ids.at(object);
     HybridSmoothingEdge edge;
     edge.motion_a = ids.at(k - 2);
     edge.motion_b = ids.at(k - 1);
     edge.motion_c = ids.at(k);
-    edge.embedded = embedded_of.at(a.object).at(k);
-    edge.information = HybridSmoothingInformation(e, out.vertices.at(edge.embedded).pose());
+    edge.embedded = embedded_of.at(object).at(k);
+    edge.information = information;
     out.Edges<HybridSmoothingEdge>().push_back(edge);
-    const Eigen::Quaterniond rotation = e.measurement.rotation();
-    const bool identity = e.measurement.translation().isZero(0) && rotation.vec().isZero(0);
-    if (!identity && report_ != nullptr) {
-      report_->warnings.push_back(name_ + ":" + std::to_string(e.line) +
-                                  ": the smoothing edge's measurement is not the identity, which "
-                                  "EDGE_SE3_HY_SMOOTHING has no field for (SPEC §3.6)");
+  };
+  if (options_.dynosam_smoothing) {  // §3.6 --compat dynosam item 1
+    Vector6d diagonal;
+    diagonal << Eigen::Vector3d::Constant(1 / (0.01 * 0.01)), Eigen::Vector3d::Constant(1 / (0.1 * 0.1));
+    for (const Segment& segment : segments_) {
+      if (!segment.kept) continue;
+      for (int64_t k = segment.first + 2; k <= segment.last; ++k) {
+        add_smoothing(segment.object, k, diagonal.asDiagonal());
+      }
+    }
+  } else {
+    for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
+      if (fe_.Find(e.from)->label.role != Role::kMotion || !KeptSmoothing(e)) continue;
+      const Label& a = fe_.Find(e.from)->label;
+      const int64_t k = std::max(a.frame, fe_.Find(e.to)->label.frame);
+      const VertexId embedded = embedded_of.at(a.object).at(k);
+      add_smoothing(a.object, k, HybridSmoothingInformation(e, out.vertices.at(embedded).pose()));
+      const Eigen::Quaterniond rotation = e.measurement.rotation();
+      const bool identity = e.measurement.translation().isZero(0) && rotation.vec().isZero(0);
+      if (!identity && report_ != nullptr) {
+        report_->warnings.push_back(name_ + ":" + std::to_string(e.line) +
+                                    ": the smoothing edge's measurement is not the identity, which "
+                                    "EDGE_SE3_HY_SMOOTHING has no field for (SPEC §3.6)");
+      }
     }
   }
   int64_t kept = 0;
@@ -680,9 +718,11 @@ void Builder::AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
     out.vertices.emplace(*next_id, vertex);
     return (*next_id)++;
   };
-  // L_e: §3.3's first-frame value (ground truth, else the centroid).
+  // L_e: §3.3's first-frame value (ground truth, else the centroid), or DynoSAM's.
   Pose l_e;
-  if (options_.object_init == ObjectInit::kCentroid || !PoseFromTruth(j, k0, &l_e)) {
+  if (options_.dynosam_embedded_frame) {
+    l_e = MeasuredCentroid(j, k0);
+  } else if (options_.object_init == ObjectInit::kCentroid || !PoseFromTruth(j, k0, &l_e)) {
     l_e = Centroid(segment, k0);
   }
   const VertexId embedded = add_pose(l_e, Label{Role::kEmbeddedFrame, j, k0});
@@ -698,10 +738,13 @@ void Builder::AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
             [](const Tracklet* a, const Tracklet* b) { return a->points[0] < b->points[0]; });
   for (Tracklet* t : ordered) {  // m = L_e⁻¹ · (H^e_kf)⁻¹ · m_W,kf
     const Vertex& first = *fe_.Find(t->points[0]);
+    const Eigen::Vector3d m_w = options_.dynosam_points_from_measurements
+                                    ? MeasuredWorldPoint(t->points[0])
+                                    : Eigen::Vector3d(first.point());
     Vertex vertex;
     vertex.type = VertexType::kPoint;
     vertex.value.fill(0);
-    vertex.point() = Transform(Inverse(Compose(h.at(first.label.frame), l_e)), first.point());
+    vertex.point() = Transform(Inverse(Compose(h.at(first.label.frame), l_e)), m_w);
     vertex.label = Label{Role::kObjectPoint, j, -1, t->id};
     t->object_point = *next_id;
     out.vertices.emplace((*next_id)++, vertex);

@@ -115,6 +115,17 @@ check "build" 0 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc
 expect_output "build report" "kept: object 1 frames 0..29"
 check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
 check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 9
+check "bad --compat dynosam item" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat dynosam:5
+expect_output "bad dynosam item named" "'5' is not a DynoSAM item number 1 to 4"
+check "build hy with --compat dynosam" 0 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation hy --gt "$data/synthetic/gt.txt" --compat dynosam --out "$work/hy.g2o"
+check "bad --hybrid-smoothing-info" 2 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation hy --hybrid-smoothing-info 0.01 --out "$work/x.g2o"
+expect_output "bad smoothing information named" "is not frontend, world or two positive sigmas"
+check "solve hy with DynoSAM's Huber (item 2)" 0 "$dynslam" solve "$work/hy.g2o" --out "$work/hy" --compat dynosam:2 --max-iterations 2
+if grep -A3 '"hybrid_point"' "$work/hy/summary.json" | grep -q '"threshold": 0.0001'; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: --compat dynosam:2 did not put Huber 1e-4 on hybrid_point edges"
+fi
 
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

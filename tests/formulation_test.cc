@@ -773,5 +773,50 @@ TEST(HybridFormulationTest, LabelsThatContradictTheFieldsAreErrors) {
   }
 }
 
+// SPEC §3.6 --compat dynosam, items 1, 3 and 4 (item 2 is a solver kernel: tests/cli_test.sh).
+// The hand-made front end without its smoothing edge 53–54 and with point 30 (tracklet C's
+// first, frame 3, measured at z = (0, 1, 10) from camera 3 at (3, 0, 0)) moved to x = 13 in its
+// initial world value, so that measurements and world values disagree.
+TEST(HybridFormulationTest, DynosamCompatItems) {
+  std::string text = UnlabelledFrontEnd();
+  const std::string smoothing = "EDGE_SE3:QUAT 53 54 ";
+  const size_t at = text.find(smoothing);
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) - at + 1);
+  const std::string point = "VERTEX_TRACKXYZ 30 3 1 10\n";
+  ASSERT_NE(text.find(point), std::string::npos);
+  text.replace(text.find(point), point.size(), "VERTEX_TRACKXYZ 30 13 1 10\n");
+  const Graph front_end = ReadText(text);
+  BuildOptions options;
+  options.min_object_frames = 3;
+  auto build = [&](const BuildOptions& o) {
+    Expected<Graph> hy = BuildFormulation(front_end, Formulation::kHybrid, o, nullptr, nullptr);
+    EXPECT_TRUE(hy.ok()) << hy.error().ToString();
+    return hy.ok() ? std::move(hy).value() : Graph{};
+  };
+  const Graph plain = build(options);
+  EXPECT_EQ(plain.Edges<HybridSmoothingEdge>().size(), 2u);  // 50–51 and 54–55
+  // L_e of the second segment: centroid of the world values (13, 1, 10), (3.5, 1, 10); C's m
+  // from its world value.
+  EXPECT_EQ(plain.Find(62)->pose().translation(), Eigen::Vector3d(8.25, 1, 10));
+  EXPECT_EQ(plain.Find(67)->point(), Eigen::Vector3d(4.75, 0, 0));
+
+  BuildOptions dynosam = options;
+  dynosam.dynosam_smoothing = true;
+  const Graph item1 = build(dynosam);
+  ASSERT_EQ(item1.Edges<HybridSmoothingEdge>().size(), 3u);  // k = 2; 5 and 6
+  Vector6d diagonal;
+  diagonal << 1e4, 1e4, 1e4, 100, 100, 100;  // [ω; ρ]: σ = 0.01 rad, 0.1 m
+  for (const HybridSmoothingEdge& e : item1.Edges<HybridSmoothingEdge>()) {
+    EXPECT_TRUE(e.information.isApprox(Matrix6d(diagonal.asDiagonal()), 1e-12)) << e.information;
+  }
+
+  dynosam = options;
+  dynosam.dynosam_embedded_frame = true;  // X_3 · mean(z) = (3, 0, 0) + (0.25, 1, 10)
+  EXPECT_EQ(build(dynosam).Find(62)->pose().translation(), Eigen::Vector3d(3.25, 1, 10));
+  dynosam.dynosam_points_from_measurements = true;  // m_C = L_e⁻¹ · X_3 · z = (3, 1, 10) − L_e
+  EXPECT_EQ(build(dynosam).Find(67)->point(), Eigen::Vector3d(-0.25, 0, 0));
+}
+
 }  // namespace
 }  // namespace dynslam
