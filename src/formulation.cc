@@ -20,7 +20,6 @@ struct Tracklet {
   int64_t id = -1;                          // tracklet id (labels or SPEC §3.1 numbering)
   std::vector<VertexId> points;             // in time order
   std::vector<const MotionEdge*> edges;     // edges[i] joins points[i] and points[i + 1]
-  VertexId object_point = -1;               // object-centric m_L, once assigned
 };
 
 // A maximal run of frames k0..k1 of one object joined by motion edges (SPEC §3.1).
@@ -40,6 +39,18 @@ bool IsSharedEdgeKind(EdgeKind kind) {
 
 std::string Count(int64_t n, const char* what) { return std::to_string(n) + " " + what; }
 
+// What one build adds to the analysis: the next free id, the ids it gave, and how many first
+// poses came from the ground truth.
+struct BuildState {
+  VertexId next_id = 0;
+  std::map<const Tracklet*, VertexId> object_point;                  // oc: m_L per tracklet
+  std::map<const Segment*, std::map<int64_t, VertexId>> pose_ids;  // oc: frame → L_k
+  int from_truth = 0;
+};
+
+// Analyse() reads the front end once (tracklets, segments, what is kept and dropped, SPEC §3.1);
+// Build() is const: each formulation's steps read that analysis and write only their graph and
+// BuildState, so every formulation is built from the same analysis.
 class Builder {
  public:
   Builder(const Graph& front_end, const BuildOptions& options, const GroundTruth* gt,
@@ -47,11 +58,11 @@ class Builder {
       : fe_(front_end), options_(options), gt_(gt), report_(report), name_(name) {}
 
   Status Analyse();
-  Expected<Graph> Build(Formulation formulation);
+  Expected<Graph> Build(Formulation formulation) const;
 
  private:
   Error Fail(int64_t line, const std::string& message) const { return Error{name_, line, message}; }
-  void Say(const std::string& line) {
+  void Say(const std::string& line) const {
     if (report_ != nullptr) report_->lines.push_back(line);
   }
   Status FindTracklets();
@@ -77,10 +88,10 @@ class Builder {
                                                          : fe_.Find(id)->pose();
   }
   // Object poses and object-frame points of one kept segment (SPEC §3.3), into `out`.
-  void InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out);
+  void InitialiseSegment(const Segment& segment, BuildState& state, Graph& out) const;
   // SPEC §3.3's first-frame rule: the true object pose seen from its camera, placed in the
   // drifted initial world; false when the ground truth lacks the object or the camera at k.
-  bool PoseFromTruth(int64_t object, int64_t k, Pose* pose);
+  bool PoseFromTruth(int64_t object, int64_t k, Pose* pose) const;
   // The centroid of the initial world points of `segment` at frame k, identity rotation.
   Pose Centroid(const Segment& segment, int64_t k) const;
   // --compat dynosam (§3.6): X_k · mean of every measurement z of the object at k (dropped
@@ -91,12 +102,12 @@ class Builder {
   // The build steps: every formulation starts with AddShared; then its own.
   void AddShared(Graph& out, bool with_motions) const;
   void AddWorldCentric(Graph& out) const;
-  void AddObjectCentric(Graph& out, Formulation formulation);
-  void AddHybrid(Graph& out);
+  void AddObjectCentric(Graph& out, Formulation formulation, BuildState& state) const;
+  void AddHybrid(Graph& out, BuildState& state) const;
   // SPEC §3.6: one segment's embedded frame, hybrid motions (ids in `motion_ids` by frame),
   // object points, point edges and anchor.
-  void AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
-                        std::map<int64_t, VertexId>* motion_ids);
+  void AddHybridSegment(const Segment& segment, BuildState& state, Graph& out,
+                        std::map<int64_t, VertexId>* motion_ids) const;
   Matrix6d HybridSmoothingInformation(const BetweenEdge& e, const Pose& embedded) const;
   void AddVertex(Graph& out, VertexId id, const Label& label) const {
     Vertex vertex = *fe_.Find(id);
@@ -119,8 +130,6 @@ class Builder {
   std::vector<Segment> segments_;                                // by object, then time
   std::unordered_map<const Tracklet*, Segment*> segment_of_;
   std::set<VertexId> kept_motions_;
-  std::map<const Segment*, std::map<int64_t, VertexId>> segment_pose_ids_;  // frame → L_k id
-  int initialised_from_gt_ = 0;
 };
 
 Status Builder::FindTracklets() {
@@ -401,13 +410,12 @@ bool Align(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Ve
   return true;
 }
 
-bool Builder::PoseFromTruth(int64_t object, int64_t k, Pose* pose) {
+bool Builder::PoseFromTruth(int64_t object, int64_t k, Pose* pose) const {
   const Pose* x_gt = gt_ != nullptr ? gt_->Camera(k) : nullptr;
   const Pose* l_gt = gt_ != nullptr ? gt_->Object(object, k) : nullptr;
   auto camera = camera_of_frame_.find(k);
   if (x_gt == nullptr || l_gt == nullptr || camera == camera_of_frame_.end()) return false;
   *pose = Compose(Compose(fe_.Find(camera->second)->pose(), Inverse(*x_gt)), *l_gt);
-  ++initialised_from_gt_;
   return true;
 }
 
@@ -444,7 +452,7 @@ Pose Builder::Centroid(const Segment& segment, int64_t k) const {
                                        sum / static_cast<double>(n));
 }
 
-void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out) {
+void Builder::InitialiseSegment(const Segment& segment, BuildState& state, Graph& out) const {
   const int64_t j = segment.object;
   // Dynamic points of this segment by frame: (tracklet, world point at that frame).
   std::map<int64_t, std::vector<std::pair<Tracklet*, VertexId>>> observed;
@@ -454,7 +462,11 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
   auto centroid = [&](int64_t k) { return Centroid(segment, k); };
   std::map<int64_t, Pose> poses;
   std::map<const Tracklet*, Eigen::Vector3d> object_points;
-  auto from_truth = [&](int64_t k, Pose* pose) { return PoseFromTruth(j, k, pose); };
+  auto from_truth = [&](int64_t k, Pose* pose) {
+    const bool found = PoseFromTruth(j, k, pose);
+    state.from_truth += found;
+    return found;
+  };
   auto chained = [&](int64_t k) {
     return Compose(MotionValue(motion_at_.at({j, k})), poses.at(k - 1));
   };
@@ -475,7 +487,7 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
     const Pose* l_gt = gt_ != nullptr ? gt_->Object(j, k) : nullptr;
     if (k == segment.first && options_.dsc_object_centric_noise && l_gt != nullptr) {
       pose = Pose::FromRotationTranslation(Eigen::Quaterniond::Identity(), l_gt->translation());
-      ++initialised_from_gt_;
+      ++state.from_truth;
     } else if (rule == ObjectInit::kCentroid) {
       pose = centroid(k);
     } else if (k == segment.first) {
@@ -499,8 +511,8 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
     vertex.type = VertexType::kPose;
     vertex.set_pose(pose);
     vertex.label = Label{Role::kObjectPose, j, k, -1};
-    pose_ids[k] = *next_id;
-    out.vertices.emplace((*next_id)++, vertex);
+    pose_ids[k] = state.next_id;
+    out.vertices.emplace(state.next_id++, vertex);
   }
   std::vector<Tracklet*> ordered = segment.tracklets;
   std::sort(ordered.begin(), ordered.end(),
@@ -511,8 +523,8 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
     vertex.value.fill(0);
     vertex.point() = object_points.at(t);
     vertex.label = Label{Role::kObjectPoint, j, -1, t->id};
-    t->object_point = *next_id;
-    out.vertices.emplace((*next_id)++, vertex);
+    state.object_point[t] = state.next_id;
+    out.vertices.emplace(state.next_id++, vertex);
   }
   // Prior on the first pose at its initial value (SPEC §3.3), information in [ω; ρ] order.
   PriorEdge prior;
@@ -523,15 +535,14 @@ void Builder::InitialiseSegment(Segment& segment, VertexId* next_id, Graph& out)
       1.0 / options_.object_prior_rotation_variance),
       Eigen::Vector3d::Constant(1.0 / options_.object_prior_translation_variance);
   out.Edges<PriorEdge>().push_back(prior);
-  segment_pose_ids_[&segment] = pose_ids;
+  state.pose_ids[&segment] = pose_ids;
 }
 
 // SPEC §3.3: object poses per frame, object-frame points, their measurements, and the
 // variant's motion and kinematic edges.
-void Builder::AddObjectCentric(Graph& out, Formulation formulation) {
-  VertexId next_id = fe_.vertices.empty() ? 0 : fe_.vertices.rbegin()->first + 1;
-  for (Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
-    if (segment.kept) InitialiseSegment(segment, &next_id, out);
+void Builder::AddObjectCentric(Graph& out, Formulation formulation, BuildState& state) const {
+  for (const Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
+    if (segment.kept) InitialiseSegment(segment, state, out);
   }
   Matrix6d kinematic_information =
       Matrix6d::Identity() / (options_.kinematic_sigma * options_.kinematic_sigma);
@@ -547,16 +558,16 @@ void Builder::AddObjectCentric(Graph& out, Formulation formulation) {
       e.information = first_static->information;
     }
   }
-  for (Segment& segment : segments_) {
+  for (const Segment& segment : segments_) {
     if (!segment.kept) continue;
-    const std::map<int64_t, VertexId>& pose_ids = segment_pose_ids_.at(&segment);
+    const std::map<int64_t, VertexId>& pose_ids = state.pose_ids.at(&segment);
     for (const Tracklet* t : segment.tracklets) {
       for (const VertexId p : t->points) {
         const PointEdge& observation = *dynamic_observation_.at(p);
         ObjectPointEdge e;
         e.camera = observation.pose;
         e.object_pose = pose_ids.at(fe_.Find(p)->label.frame);
-        e.point = t->object_point;
+        e.point = state.object_point.at(t);
         e.measurement = observation.measurement;
         e.information = options_.dsc_object_centric_noise ? first_dynamic->information
                                                            : observation.information;
@@ -574,7 +585,7 @@ void Builder::AddObjectCentric(Graph& out, Formulation formulation) {
         e.pose_prev = pose_ids.at(m->frame - 1);
         e.pose_curr = pose_ids.at(m->frame);
         e.motion = m->motion;
-        e.point = t->object_point;
+        e.point = state.object_point.at(t);
         e.information = options_.dsc_object_centric_noise
                             ? Eigen::Matrix3d(Eigen::Matrix3d::Identity() / (0.2 * 0.2))
                             : m->information;
@@ -592,8 +603,8 @@ void Builder::AddObjectCentric(Graph& out, Formulation formulation) {
     }
   }
   int64_t poses = 0;
-  for (const auto& [segment, ids] : segment_pose_ids_) poses += static_cast<int64_t>(ids.size());
-  Say("object poses: " + std::to_string(poses) + ", " + std::to_string(initialised_from_gt_) +
+  for (const auto& [segment, ids] : state.pose_ids) poses += static_cast<int64_t>(ids.size());
+  Say("object poses: " + std::to_string(poses) + ", " + std::to_string(state.from_truth) +
       " initialised from ground truth (--object-init " + ObjectInitName(options_.object_init) +
       ")");
 }
@@ -637,14 +648,13 @@ void Builder::AddWorldCentric(Graph& out) const {
 
 // SPEC §3.6: per kept segment an embedded frame, hybrid motions, object points, their
 // measurements and an anchor; the front end's smoothing edges re-expressed on three motions.
-void Builder::AddHybrid(Graph& out) {
-  VertexId next_id = fe_.vertices.empty() ? 0 : fe_.vertices.rbegin()->first + 1;
+void Builder::AddHybrid(Graph& out, BuildState& state) const {
   std::map<int64_t, std::map<int64_t, VertexId>> motion_ids;  // object → frame → H^e_k
   std::map<int64_t, std::map<int64_t, VertexId>> embedded_of;  // object → frame → L_e
-  for (Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
+  for (const Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
     if (!segment.kept) continue;
-    const VertexId embedded = next_id;
-    AddHybridSegment(segment, &next_id, out, &motion_ids[segment.object]);
+    const VertexId embedded = state.next_id;
+    AddHybridSegment(segment, state, out, &motion_ids[segment.object]);
     for (int64_t k = segment.first; k <= segment.last; ++k) embedded_of[segment.object][k] = embedded;
   }
   auto add_smoothing = [&](int64_t object, int64_t k, const Matrix6d& information) {
@@ -684,7 +694,7 @@ void Builder::AddHybrid(Graph& out) {
   }
   int64_t kept = 0;
   for (const Segment& segment : segments_) kept += segment.kept;
-  Say("embedded frames: " + std::to_string(kept) + ", " + std::to_string(initialised_from_gt_) +
+  Say("embedded frames: " + std::to_string(kept) + ", " + std::to_string(state.from_truth) +
       " from ground truth (constant; --object-init " + ObjectInitName(options_.object_init) + ")");
 }
 
@@ -707,22 +717,24 @@ Matrix6d Builder::HybridSmoothingInformation(const BetweenEdge& e, const Pose& e
   return e.information;
 }
 
-void Builder::AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
-                               std::map<int64_t, VertexId>* motion_ids) {
+void Builder::AddHybridSegment(const Segment& segment, BuildState& state, Graph& out,
+                               std::map<int64_t, VertexId>* motion_ids) const {
   const int64_t j = segment.object, k0 = segment.first;
   auto add_pose = [&](const Pose& pose, const Label& label) {
     Vertex vertex;
     vertex.type = VertexType::kPose;
     vertex.set_pose(pose);
     vertex.label = label;
-    out.vertices.emplace(*next_id, vertex);
-    return (*next_id)++;
+    out.vertices.emplace(state.next_id, vertex);
+    return state.next_id++;
   };
   // L_e: §3.3's first-frame value (ground truth, else the centroid), or DynoSAM's.
   Pose l_e;
   if (options_.dynosam_embedded_frame) {
     l_e = MeasuredCentroid(j, k0);
-  } else if (options_.object_init == ObjectInit::kCentroid || !PoseFromTruth(j, k0, &l_e)) {
+  } else if (options_.object_init != ObjectInit::kCentroid && PoseFromTruth(j, k0, &l_e)) {
+    ++state.from_truth;
+  } else {
     l_e = Centroid(segment, k0);
   }
   const VertexId embedded = add_pose(l_e, Label{Role::kEmbeddedFrame, j, k0});
@@ -746,15 +758,15 @@ void Builder::AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
     vertex.value.fill(0);
     vertex.point() = Transform(Inverse(Compose(h.at(first.label.frame), l_e)), m_w);
     vertex.label = Label{Role::kObjectPoint, j, -1, t->id};
-    t->object_point = *next_id;
-    out.vertices.emplace((*next_id)++, vertex);
+    const VertexId point = state.next_id++;
+    out.vertices.emplace(point, vertex);
     for (const VertexId p : t->points) {
       const PointEdge& observation = *dynamic_observation_.at(p);
       HybridPointEdge e;
       e.camera = observation.pose;
       e.motion = motion_ids->at(fe_.Find(p)->label.frame);
       e.embedded = embedded;
-      e.point = t->object_point;
+      e.point = point;
       e.measurement = observation.measurement;
       e.information = observation.information;
       out.Edges<HybridPointEdge>().push_back(e);
@@ -767,17 +779,19 @@ void Builder::AddHybridSegment(Segment& segment, VertexId* next_id, Graph& out,
   out.Edges<PriorEdge>().push_back(anchor);
 }
 
-Expected<Graph> Builder::Build(Formulation formulation) {
+Expected<Graph> Builder::Build(Formulation formulation) const {
   Graph out;
   out.formulation = FormulationName(formulation);
   out.labelled = true;
+  BuildState state;  // new vertices get ids from max_id + 1 (SPEC §3.4)
+  state.next_id = fe_.vertices.empty() ? 0 : fe_.vertices.rbegin()->first + 1;
   AddShared(out, formulation != Formulation::kHybrid);
   switch (formulation) {
     case Formulation::kWorldCentric: AddWorldCentric(out); break;
     case Formulation::kObjectCentricA:
     case Formulation::kObjectCentricB:
-    case Formulation::kObjectCentricC: AddObjectCentric(out, formulation); break;
-    case Formulation::kHybrid: AddHybrid(out); break;
+    case Formulation::kObjectCentricC: AddObjectCentric(out, formulation, state); break;
+    case Formulation::kHybrid: AddHybrid(out, state); break;
   }
   // The built graph must read back as a consistent labelled file (SPEC §1.4).
   if (Status s = AssignRoles(out, name_); !s.ok()) return s.error();
