@@ -23,7 +23,8 @@ namespace {
 void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
   const SolveReport& r = *outputs.report;
   std::string source;
-  std::printf("%s (%s)\n", outputs.input.c_str(), FormulationLabelOf(*outputs.solved, &source).c_str());
+  std::printf("%s (%s)\n", outputs.input.c_str(),
+              FormulationLabelOf(*outputs.solved, &source).c_str());
   std::printf("variables:");
   for (size_t i = 0; i < kAllRoles.size(); ++i) {
     if (r.variables_by_role[i] > 0) {
@@ -129,7 +130,9 @@ int RunSolve(int argc, char** argv) {
 
   std::string source;
   compat.Apply(FormulationLabelOf(*graph, &source) == "wc", &options);
-  if (compat.any()) outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7, §3.6)");
+  if (compat.any()) {
+    outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7, §3.6)");
+  }
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();

@@ -252,7 +252,8 @@ void DefineFunctions(py::module_& m) {
                     const py::kwargs& options) {
     Formulation f;
     if (!ParseFormulation(formulation, &f)) {
-      throw py::value_error("unknown formulation '" + formulation + "' (" + FormulationNames() + ")");
+      throw py::value_error("unknown formulation '" + formulation + "' (" +
+                            FormulationNames() + ")");
     }
     const std::optional<GroundTruth> truth =
         gt.is_none() ? std::nullopt : std::optional<GroundTruth>(AsGroundTruth(gt));

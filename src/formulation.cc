@@ -655,7 +655,9 @@ void Builder::AddHybrid(Graph& out, BuildState& state) const {
     if (!segment.kept) continue;
     const VertexId embedded = state.next_id;
     AddHybridSegment(segment, state, out, &motion_ids[segment.object]);
-    for (int64_t k = segment.first; k <= segment.last; ++k) embedded_of[segment.object][k] = embedded;
+    for (int64_t k = segment.first; k <= segment.last; ++k) {
+      embedded_of[segment.object][k] = embedded;
+    }
   }
   auto add_smoothing = [&](int64_t object, int64_t k, const Matrix6d& information) {
     const std::map<int64_t, VertexId>& ids = motion_ids.at(object);
@@ -669,7 +671,8 @@ void Builder::AddHybrid(Graph& out, BuildState& state) const {
   };
   if (options_.dynosam_smoothing) {  // §3.6 --compat dynosam item 1
     Vector6d diagonal;
-    diagonal << Eigen::Vector3d::Constant(1 / (0.01 * 0.01)), Eigen::Vector3d::Constant(1 / (0.1 * 0.1));
+    diagonal << Eigen::Vector3d::Constant(1 / (0.01 * 0.01)),
+        Eigen::Vector3d::Constant(1 / (0.1 * 0.1));
     for (const Segment& segment : segments_) {
       if (!segment.kept) continue;
       for (int64_t k = segment.first + 2; k <= segment.last; ++k) {

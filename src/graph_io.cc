@@ -243,7 +243,9 @@ class EdgeFieldParser {
  public:
   EdgeFieldParser(const LineParser& p, bool with_optional) : p_(p), with_optional_(with_optional) {}
 
-  void Vertex(const VertexField&, VertexId& id) { Next(1, [&] { return p_.Integer(i_, &id, "vertex id", &error_); }); }
+  void Vertex(const VertexField&, VertexId& id) {
+    Next(1, [&] { return p_.Integer(i_, &id, "vertex id", &error_); });
+  }
   void Integer(const char* name, int64_t& value) {
     Next(1, [&] { return p_.Integer(i_, &value, name, &error_); });
   }
@@ -270,9 +272,15 @@ class EdgeFieldParser {
     });
   }
   void Measurement(Pose& pose) { Next(7, [&] { return p_.ReadPose(i_, &pose, &error_); }); }
-  void Measurement(Eigen::Vector3d& z) { Next(3, [&] { return p_.Numbers(i_, 3, z.data(), &error_); }); }
-  void Information(Eigen::Matrix3d& m) { Next(6, [&] { return p_.ReadInformation<3>(i_, &m, &error_); }); }
-  void Information(Matrix6d& m) { Next(21, [&] { return p_.Read6x6InTangentOrder(i_, &m, &error_); }); }
+  void Measurement(Eigen::Vector3d& z) {
+    Next(3, [&] { return p_.Numbers(i_, 3, z.data(), &error_); });
+  }
+  void Information(Eigen::Matrix3d& m) {
+    Next(6, [&] { return p_.ReadInformation<3>(i_, &m, &error_); });
+  }
+  void Information(Matrix6d& m) {
+    Next(21, [&] { return p_.Read6x6InTangentOrder(i_, &m, &error_); });
+  }
 
   bool ok() const { return ok_; }
   const Error& error() const { return error_; }
@@ -439,7 +447,9 @@ class Reader {
 
   Status ParseLabel(const RoleInfo& role, const LineParser& p, int64_t line) {
     std::string layout = "id";
-    for (int k = 0; k < role.num_fields; ++k) layout += std::string(" ") + LabelFieldName(role.fields[k]);
+    for (int k = 0; k < role.num_fields; ++k) {
+      layout += std::string(" ") + LabelFieldName(role.fields[k]);
+    }
     if (Status s = p.ExpectCount({1 + static_cast<size_t>(role.num_fields)}, layout.c_str());
         !s.ok()) {
       return s;
@@ -448,9 +458,8 @@ class Reader {
     Error error;
     if (!p.Integer(0, &pending.id, "vertex id", &error)) return error;
     for (int k = 0; k < role.num_fields; ++k) {
-      if (!p.Integer(k + 1, &pending.label.at(role.fields[k]), LabelFieldName(role.fields[k]), &error)) {
-        return error;
-      }
+      const LabelField field = role.fields[k];
+      if (!p.Integer(k + 1, &pending.label.at(field), LabelFieldName(field), &error)) return error;
     }
     labels_.push_back(pending);
     return Status::Ok();

@@ -135,7 +135,8 @@ TEST_P(HybridReferenceTest, InitialCostIsGtsams) {
     if (std::isnan(theirs)) {
       EXPECT_EQ(mine, 0) << EdgeKindName(kind) << " is not in GTSAM's summary";
     } else {
-      EXPECT_LE(std::abs(mine - theirs), 1e-9 * std::max(std::abs(theirs), 1.0)) << EdgeKindName(kind);
+      EXPECT_LE(std::abs(mine - theirs), 1e-9 * std::max(std::abs(theirs), 1.0))
+          << EdgeKindName(kind);
     }
   }
 }

@@ -116,7 +116,8 @@ struct BuildReport {
 };
 
 // `front_end` must have roles assigned (ReadGraph does). `ground_truth` may be null (then the
-// first pose of each segment, and hy's embedded frame, is initialised from its points, SPEC §3.3). `name` is used in the
+// first pose of each segment, and hy's embedded frame, is initialised from its points,
+// SPEC §3.3). `name` is used in the
 // report's first line.
 Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation,
                                  const BuildOptions& options, const GroundTruth* ground_truth,

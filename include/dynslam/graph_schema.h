@@ -59,7 +59,7 @@ struct RoleInfo {
   VertexType type;
   std::array<LabelField, 3> fields;  // after the id, in file order; the first `num_fields`
   int num_fields;
-  bool constant = false;  // never a variable: a solver holds it constant and writes it back unchanged
+  bool constant = false;  // never a variable: solvers hold it constant, write it back unchanged
 };
 
 inline constexpr RoleInfo kRoles[] = {
@@ -138,10 +138,12 @@ enum class EdgeKind {
   kHybridPoint,
   kHybridSmoothing,
 };
+// In EdgeKind's order.
 inline constexpr const char* kEdgeKindNames[] = {
-    "prior",        "odometry",      "smoothing", "point",        "dynamic_point",
-    "motion",       "object_point",  "object_motion", "kinematic", "object_prior",
-    "hybrid_point", "hybrid_smoothing"};
+    "prior",         "odometry",     "smoothing",    "point",
+    "dynamic_point", "motion",       "object_point", "object_motion",
+    "kinematic",     "object_prior", "hybrid_point", "hybrid_smoothing",
+};
 inline constexpr int kNumEdgeKinds = static_cast<int>(std::size(kEdgeKindNames));
 
 inline constexpr std::array<EdgeKind, kNumEdgeKinds> MakeAllEdgeKinds() {
@@ -483,10 +485,12 @@ struct HybridSmoothingEdge : EdgeDefaults {
 
   template <typename Self, typename V>
   static void Fields(Self& e, V& v) {
-    for (auto* id : {&e.motion_a, &e.motion_b, &e.motion_c}) {
-      const char* name = id == &e.motion_a ? "motion_a" : id == &e.motion_b ? "motion_b" : "motion_c";
-      v.Vertex({name, VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}}, *id);
-    }
+    v.Vertex({"motion_a", VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}},
+             e.motion_a);
+    v.Vertex({"motion_b", VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}},
+             e.motion_b);
+    v.Vertex({"motion_c", VertexType::kPose, Role::kHybridMotion, {Role::kHybridMotion}},
+             e.motion_c);
     v.Vertex({"embedded", VertexType::kPose, Role::kEmbeddedFrame, {Role::kEmbeddedFrame}},
              e.embedded);
     v.Information(e.information);
