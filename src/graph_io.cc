@@ -433,9 +433,10 @@ class Reader {
     EdgeLayout layout;
     Edge::Fields(edge, layout);
     const size_t with_optional = layout.required + layout.optional;
-    if (Status s = p.ExpectCount({layout.required, with_optional}, layout.text.c_str()); !s.ok()) {
-      return s;
-    }
+    const Status count = layout.optional == 0
+                             ? p.ExpectCount({layout.required}, layout.text.c_str())
+                             : p.ExpectCount({layout.required, with_optional}, layout.text.c_str());
+    if (!count.ok()) return count;
     EdgeFieldParser parser(p, layout.optional > 0 && p.size() == with_optional);
     Edge::Fields(edge, parser);
     if (!parser.ok()) return parser.error();

@@ -168,6 +168,9 @@ TEST(GraphIoTest, RoundTripIsBitExact) {
 TEST(GraphIoBadInputTest, WrongFieldCount) {
   ExpectError(kPose0 + "VERTEX_TRACKXYZ 1 0 0\n", 2, "has 3 fields after the tag, expected 4");
   ExpectError(kPose0 + "EDGE_SE3_PRIOR 0 0 0 0 0 0 0 1 1\n", 2, "expected 29 or 30");
+  // A tag without an optional field names one count.
+  ExpectError(kPose0 + "EDGE_SE3:QUAT 0 0 1\n", 2,
+              "has 3 fields after the tag, expected 30 (a b tx ty tz qx qy qz qw I(21))");
 }
 
 TEST(GraphIoBadInputTest, FieldNotANumberOrNotFinite) {
