@@ -39,6 +39,14 @@ bool IsSharedEdgeKind(EdgeKind kind) {
 
 std::string Count(int64_t n, const char* what) { return std::to_string(n) + " " + what; }
 
+// Information 1/σ_r² on ω and 1/σ_t² on ρ (tangent order [ω; ρ], SPEC §0).
+Matrix6d InformationFromSigmas(double sigma_rotation, double sigma_translation) {
+  Vector6d diagonal;
+  diagonal << Eigen::Vector3d::Constant(1 / (sigma_rotation * sigma_rotation)),
+      Eigen::Vector3d::Constant(1 / (sigma_translation * sigma_translation));
+  return diagonal.asDiagonal();
+}
+
 // What one build adds to the analysis: the next free id, the ids it gave, and how many first
 // poses came from the ground truth.
 struct BuildState {
@@ -544,8 +552,8 @@ void Builder::AddObjectCentric(Graph& out, Formulation formulation, BuildState& 
   for (const Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
     if (segment.kept) InitialiseSegment(segment, state, out);
   }
-  Matrix6d kinematic_information =
-      Matrix6d::Identity() / (options_.kinematic_sigma * options_.kinematic_sigma);
+  const Matrix6d kinematic_information =
+      InformationFromSigmas(options_.kinematic_sigma, options_.kinematic_sigma);
   // SPEC §7 item 5: one information per point-edge kind (the first edge's), σ = 0.2 motions.
   const PointEdge* first_dynamic = nullptr;
   for (const PointEdge& e : fe_.Edges<PointEdge>()) {
@@ -650,33 +658,28 @@ void Builder::AddWorldCentric(Graph& out) const {
 // measurements and an anchor; the front end's smoothing edges re-expressed on three motions.
 void Builder::AddHybrid(Graph& out, BuildState& state) const {
   std::map<int64_t, std::map<int64_t, VertexId>> motion_ids;  // object → frame → H^e_k
-  std::map<int64_t, std::map<int64_t, VertexId>> embedded_of;  // object → frame → L_e
   for (const Segment& segment : segments_) {  // by object, then time (SPEC §3.4)
-    if (!segment.kept) continue;
-    const VertexId embedded = state.next_id;
-    AddHybridSegment(segment, state, out, &motion_ids[segment.object]);
-    for (int64_t k = segment.first; k <= segment.last; ++k) {
-      embedded_of[segment.object][k] = embedded;
-    }
+    if (segment.kept) AddHybridSegment(segment, state, out, &motion_ids[segment.object]);
   }
+  // The embedded frame of `object`'s hybrid motion at frame k (the motion's label names it).
+  auto embedded_at = [&](int64_t object, int64_t k) {
+    return out.vertices.at(motion_ids.at(object).at(k)).label.embedded;
+  };
   auto add_smoothing = [&](int64_t object, int64_t k, const Matrix6d& information) {
     const std::map<int64_t, VertexId>& ids = motion_ids.at(object);
     HybridSmoothingEdge edge;
     edge.motion_a = ids.at(k - 2);
     edge.motion_b = ids.at(k - 1);
     edge.motion_c = ids.at(k);
-    edge.embedded = embedded_of.at(object).at(k);
+    edge.embedded = embedded_at(object, k);
     edge.information = information;
     out.Edges<HybridSmoothingEdge>().push_back(edge);
   };
   if (options_.dynosam_smoothing) {  // §3.6 --compat dynosam item 1
-    Vector6d diagonal;
-    diagonal << Eigen::Vector3d::Constant(1 / (0.01 * 0.01)),
-        Eigen::Vector3d::Constant(1 / (0.1 * 0.1));
     for (const Segment& segment : segments_) {
       if (!segment.kept) continue;
       for (int64_t k = segment.first + 2; k <= segment.last; ++k) {
-        add_smoothing(segment.object, k, diagonal.asDiagonal());
+        add_smoothing(segment.object, k, InformationFromSigmas(0.01, 0.1));
       }
     }
   } else {
@@ -684,8 +687,8 @@ void Builder::AddHybrid(Graph& out, BuildState& state) const {
       if (fe_.Find(e.from)->label.role != Role::kMotion || !KeptSmoothing(e)) continue;
       const Label& a = fe_.Find(e.from)->label;
       const int64_t k = std::max(a.frame, fe_.Find(e.to)->label.frame);
-      const VertexId embedded = embedded_of.at(a.object).at(k);
-      add_smoothing(a.object, k, HybridSmoothingInformation(e, out.vertices.at(embedded).pose()));
+      const Pose embedded = out.vertices.at(embedded_at(a.object, k)).pose();
+      add_smoothing(a.object, k, HybridSmoothingInformation(e, embedded));
       const Eigen::Quaterniond rotation = e.measurement.rotation();
       const bool identity = e.measurement.translation().isZero(0) && rotation.vec().isZero(0);
       if (!identity && report_ != nullptr) {
@@ -709,13 +712,9 @@ Matrix6d Builder::HybridSmoothingInformation(const BetweenEdge& e, const Pose& e
       const Matrix6d ad = Adjoint(embedded);
       return ad.transpose() * e.information * ad;
     }
-    case HybridSmoothingInfo::kSigmas: {
-      const double r = options_.hybrid_smoothing_sigma_rotation;
-      const double t = options_.hybrid_smoothing_sigma_translation;
-      Vector6d diagonal;
-      diagonal << Eigen::Vector3d::Constant(1 / (r * r)), Eigen::Vector3d::Constant(1 / (t * t));
-      return diagonal.asDiagonal();
-    }
+    case HybridSmoothingInfo::kSigmas:
+      return InformationFromSigmas(options_.hybrid_smoothing_sigma_rotation,
+                                   options_.hybrid_smoothing_sigma_translation);
   }
   return e.information;
 }
@@ -778,7 +777,7 @@ void Builder::AddHybridSegment(const Segment& segment, BuildState& state, Graph&
   PriorEdge anchor;  // H^e_{k0} at I (σ = hybrid_anchor_sigma)
   anchor.pose = motion_ids->at(k0);
   anchor.information =
-      Matrix6d::Identity() / (options_.hybrid_anchor_sigma * options_.hybrid_anchor_sigma);
+      InformationFromSigmas(options_.hybrid_anchor_sigma, options_.hybrid_anchor_sigma);
   out.Edges<PriorEdge>().push_back(anchor);
 }
 
