@@ -42,15 +42,10 @@ class RoleClaims {
   Status status_;
 };
 
-Role RoleOf(const Graph& graph, VertexId id) {
-  const Vertex* vertex = graph.Find(id);
-  return vertex == nullptr ? Role::kUnknown : vertex->label.role;
-}
-
 // An error unless vertex `id` has one of `roles`.
 Status Expect(const Graph& graph, VertexId id, std::initializer_list<Role> roles, int64_t line,
               const char* tag, const char* field) {
-  const Role role = RoleOf(graph, id);
+  const Role role = graph.RoleOf(id);
   if (std::find(roles.begin(), roles.end(), role) != roles.end()) return Status::Ok();
   std::string wanted;
   for (const Role r : roles) wanted += std::string(wanted.empty() ? "" : " or ") + RoleName(r);
@@ -119,7 +114,7 @@ Status CheckLabelledRoles(const Graph& graph) {
 // motion edges use dynamic points observed by their `camera`, tracklets do not branch (§1.6).
 Status CheckEdgesAgainstRoles(const Graph& graph) {
   for (const BetweenEdge& e : graph.Edges<BetweenEdge>()) {
-    const Role a = RoleOf(graph, e.from), b = RoleOf(graph, e.to);
+    const Role a = graph.RoleOf(e.from), b = graph.RoleOf(e.to);
     if (a != b || (a != Role::kCamera && a != Role::kMotion)) {
       return Error{"", e.line,
                    "EDGE_SE3:QUAT joins " + IdText(e.from) + " (" + RoleName(a) + ") and " +
@@ -134,7 +129,7 @@ Status CheckEdgesAgainstRoles(const Graph& graph) {
   std::unordered_map<VertexId, int64_t> as_prev, as_curr;  // point → line of its motion edge
   for (const MotionEdge& e : graph.Edges<MotionEdge>()) {
     for (const VertexId id : {e.prev, e.curr}) {
-      if (RoleOf(graph, id) != Role::kDynamicPoint) {
+      if (graph.RoleOf(id) != Role::kDynamicPoint) {
         return Error{"", e.line,
                      "EDGE_SE3_MOTION uses point " + std::to_string(id) +
                          ", which is not a dynamic point (its EDGE_SE3_TRACKXYZ has is_dynamic = 0)"};

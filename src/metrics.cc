@@ -57,7 +57,7 @@ bool IsObjectCentric(const Graph& graph) {
   return false;
 }
 
-// Hybrid motions by (object, frame), and the pose of each one's embedded frame.
+// Hybrid motions by (object, frame), each with the id of its embedded frame.
 struct HybridMotion {
   Pose motion;
   VertexId embedded;

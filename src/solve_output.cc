@@ -56,11 +56,10 @@ std::string ObjectFrameCsv(std::vector<ObjectPoseRow> rows) {
   return text;
 }
 
-std::vector<ObjectPoseRow> MotionRows(const Graph& graph) {
+// Poses by (object, frame) as CSV rows.
+std::vector<ObjectPoseRow> Rows(const std::map<std::pair<int64_t, int64_t>, Pose>& poses) {
   std::vector<ObjectPoseRow> rows;
-  for (const auto& [key, motion] : EstimatedMotions(graph)) {
-    rows.push_back({key.first, key.second, motion});
-  }
+  for (const auto& [key, pose] : poses) rows.push_back({key.first, key.second, pose});
   return rows;
 }
 
@@ -76,12 +75,8 @@ std::string ConvergenceCsv(const SolveReport& report) {
 
 std::vector<ObjectPoseRow> EstimatedObjectPoseRows(const SolveOutputs& outputs) {
   const GroundTruth none;  // object-centric poses need none; world-centric ones get none then
-  std::vector<ObjectPoseRow> rows;
-  for (const auto& [key, pose] : EstimatedObjectPoses(
-           *outputs.solved, outputs.ground_truth ? *outputs.ground_truth : none)) {
-    rows.push_back({key.first, key.second, pose});
-  }
-  return rows;
+  return Rows(EstimatedObjectPoses(*outputs.solved,
+                                   outputs.ground_truth ? *outputs.ground_truth : none));
 }
 
 JsonValue CostJson(const CostByKind& cost) {
@@ -199,7 +194,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
   if (Status s = WriteGraph(graph, (base / "solution.g2o").string()); !s.ok()) return s;
   const std::pair<const char*, std::string> files[] = {
       {"cameras.csv", CamerasCsv(graph)},
-      {"motions.csv", ObjectFrameCsv(MotionRows(graph))},
+      {"motions.csv", ObjectFrameCsv(Rows(EstimatedMotions(graph)))},
       {"object_poses.csv", ObjectFrameCsv(EstimatedObjectPoseRows(outputs))},
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
       {"summary.json", SummaryJson(outputs) + "\n"},

@@ -65,6 +65,11 @@ struct Graph {
   const Vertex* Find(VertexId id) const;
   Vertex* Find(VertexId id);
   size_t NumEdges() const;
+  // The role of vertex `id`; kUnknown when there is no such vertex.
+  Role RoleOf(VertexId id) const {
+    const Vertex* vertex = Find(id);
+    return vertex == nullptr ? Role::kUnknown : vertex->label.role;
+  }
   // Vertices but constants (roles with RoleInfo::constant: hy's embedded frames).
   size_t NumVariables() const;
 };
@@ -73,10 +78,7 @@ struct Graph {
 // roles assigned (AssignRoles).
 template <typename Edge>
 EdgeKind KindOf(const Graph& graph, const Edge& edge) {
-  return edge.Kind([&](VertexId id) {
-    const Vertex* vertex = graph.Find(id);
-    return vertex == nullptr ? Role::kUnknown : vertex->label.role;
-  });
+  return edge.Kind([&](VertexId id) { return graph.RoleOf(id); });
 }
 
 // Number of edges of each kind, indexed by static_cast<int>(EdgeKind).
