@@ -25,18 +25,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::ReferenceDir;
+using testing::ReferenceHybridDir;
 using testing::RelativeDifference;
-
-std::string HybridDir() {
-  const fs::path shared(DYNSLAM_REFERENCE_HYBRID_DIR);
-  if (fs::is_directory(shared)) return shared.string();
-  return (fs::path(DYNSLAM_SOURCE_DIR) / "data" / "reference_hybrid").string();
-}
 
 std::vector<std::string> HybridScenes() {
   std::vector<std::string> scenes;
   std::error_code ec;
-  for (const auto& scene : fs::directory_iterator(HybridDir(), ec)) {
+  for (const auto& scene : fs::directory_iterator(ReferenceHybridDir(), ec)) {
     if (fs::exists(scene.path() / "graphs" / "hy.g2o")) {
       scenes.push_back(scene.path().filename().string());
     }
@@ -79,7 +74,7 @@ SolverOptions NoSteps() {
 
 class HybridReferenceTest : public ::testing::TestWithParam<std::string> {
  protected:
-  fs::path Scene() const { return fs::path(HybridDir()) / GetParam(); }
+  fs::path Scene() const { return fs::path(ReferenceHybridDir()) / GetParam(); }
   fs::path FrontEndDir() const { return fs::path(ReferenceDir()) / GetParam(); }
 };
 

@@ -18,10 +18,17 @@
 
 namespace dynslam::testing {
 
-inline std::string ReferenceDir() {
-  const std::filesystem::path shared(DYNSLAM_REFERENCE_DIR);
-  if (std::filesystem::is_directory(shared)) return shared.string();
-  return (std::filesystem::path(DYNSLAM_SOURCE_DIR) / "data" / "reference").string();
+// `shared` when it is a directory, else the embedded copy data/<embedded>.
+inline std::string SharedOrEmbedded(const char* shared, const char* embedded) {
+  if (std::filesystem::is_directory(shared)) return shared;
+  return (std::filesystem::path(DYNSLAM_SOURCE_DIR) / "data" / embedded).string();
+}
+
+inline std::string ReferenceDir() { return SharedOrEmbedded(DYNSLAM_REFERENCE_DIR, "reference"); }
+
+// The hybrid reference solves (SPEC §3.6), ../shared/reference_hybrid or data/reference_hybrid.
+inline std::string ReferenceHybridDir() {
+  return SharedOrEmbedded(DYNSLAM_REFERENCE_HYBRID_DIR, "reference_hybrid");
 }
 
 // One solved graph of the reference set: <scene>/graphs/<name>.g2o with its GTSAM solves in
