@@ -58,10 +58,12 @@ SolverFlags::SolverFlags(ArgParser* parser)
       function_tolerance_(defaults_.function_tolerance),
       gradient_tolerance_(defaults_.gradient_tolerance),
       parameter_tolerance_(defaults_.parameter_tolerance),
+      remaining_chi2_(defaults_.remaining_chi2),
       initial_lambda_(defaults_.initial_lambda),
       nonmonotonic_steps_(defaults_.nonmonotonic_steps),
       fix_first_(defaults_.fix_first),
-      eliminate_object_points_(defaults_.eliminate_object_points) {
+      eliminate_object_points_(defaults_.eliminate_object_points),
+      parser_(parser) {
   parser->AddChoice("minimizer", &minimizer_, {"auto", "lm", "dogleg"},
                     "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: dogleg "
                     "for world-centric graphs with points (wc), else lm");
@@ -85,6 +87,14 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "stop when the max-norm of the projected gradient is below this", 0, 1);
   parser->AddDouble("parameter-tolerance", &parameter_tolerance_,
                     "stop when the step is this small relative to the parameters", 0, 1);
+  parser->AddDouble("remaining-chi2", &remaining_chi2_,
+                    "stop once the chi2 (twice the cost) still to gain is estimated at most "
+                    "this: every variable within sqrt(X) of its marginal sigma of the optimum; "
+                    "0: off (docs/SOLVER.md)",
+                    0, 1e300);
+  parser->AddChoice("tolerances", &tolerances_, {"default", "tight"},
+                    "tight: no --remaining-chi2 rule, only the three tolerances (to the optimum "
+                    "to ~1e-10 relative; the reference tests)");
   parser->AddDouble("initial-lambda", &initial_lambda_,
                     "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
                     "radius); 0: 1e-6 for graphs with points, 1e-10 for pose graphs",
@@ -125,6 +135,13 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
   options->function_tolerance = function_tolerance_;
   options->gradient_tolerance = gradient_tolerance_;
   options->parameter_tolerance = parameter_tolerance_;
+  options->remaining_chi2 = remaining_chi2_;
+  if (tolerances_ == "tight") {
+    if (parser_->Given("remaining-chi2") && remaining_chi2_ > 0) {
+      return std::string("--tolerances tight turns --remaining-chi2 off; give one of them");
+    }
+    options->remaining_chi2 = 0;
+  }
   options->initial_lambda = initial_lambda_;
   options->nonmonotonic_steps = static_cast<int>(nonmonotonic_steps_);
   options->fix_first = fix_first_;

@@ -11,7 +11,8 @@
 namespace dynslam::cli {
 
 // Declares --minimizer, --linear-solver, --sparse-backend, --threads, --max-iterations, --max-time, the
-// three tolerances, --fix-first and --robust on `parser`; Finish() turns them into options.
+// three tolerances, --remaining-chi2, --tolerances, --fix-first and --robust on `parser`;
+// Finish() turns them into options.
 class SolverFlags {
  public:
   explicit SolverFlags(ArgParser* parser);
@@ -29,6 +30,8 @@ class SolverFlags {
   double function_tolerance_;
   double gradient_tolerance_;
   double parameter_tolerance_;
+  double remaining_chi2_;
+  std::string tolerances_ = "default";
   double initial_lambda_;
   int64_t nonmonotonic_steps_;
   bool fix_first_;
@@ -37,6 +40,7 @@ class SolverFlags {
   std::string kinematic_residual_frame_ =
       defaults_.world_frame_kinematic_residual ? "world" : "object";
   std::string robust_;
+  const ArgParser* parser_;
 };
 
 // Prints one line per linear solve to stderr once a solve has run for more than a second.

@@ -4,7 +4,7 @@
 // and, every `--cost-every` steps, the cost per edge kind. Then names the variables that move
 // last: those farthest from the final values once the cost is within 1e-6 of the final cost.
 //
-//   convergence_probe GRAPH [--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N]
+//   convergence_probe GRAPH [--remaining-chi2 X] [--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N]
 //                           [--minimizer lm|dogleg] [--cost-every N] [--top N]
 //
 // Prints CSV blocks to stdout: "steps" (one row per linear solve), "gap" (per accepted step and
@@ -54,7 +54,9 @@ bool ParseArgs(int argc, char** argv, Args* args) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--max-iterations" && has_value) {
+    if (a == "--remaining-chi2" && has_value) {
+      args->options.remaining_chi2 = std::atof(argv[++i]);
+    } else if (a == "--max-iterations" && has_value) {
       args->options.max_iterations = std::atoi(argv[++i]);
     } else if (a == "--initial-lambda" && has_value) {
       args->options.initial_lambda = std::atof(argv[++i]);
@@ -76,10 +78,10 @@ bool ParseArgs(int argc, char** argv, Args* args) {
 }
 
 void PrintSteps(const std::vector<StepRecord>& rows) {
-  std::printf("# steps\nstep,accepted,lambda,cost,trial_cost,rho,time_s\n");
+  std::printf("# steps\nstep,accepted,lambda,cost,trial_cost,rho,time_s,step_norm\n");
   for (const StepRecord& r : rows) {
-    std::printf("%d,%d,%.3e,%.10f,%.10f,%.4f,%.3f\n", r.step, r.accepted ? 1 : 0, r.lambda,
-                r.cost, r.trial_cost, r.relative_decrease, r.time_s);
+    std::printf("%d,%d,%.3e,%.10f,%.10f,%.4f,%.3f,%.3e\n", r.step, r.accepted ? 1 : 0, r.lambda,
+                r.cost, r.trial_cost, r.relative_decrease, r.time_s, r.step_norm);
   }
 }
 

@@ -40,11 +40,13 @@ LINEAR = {
     "snc_eigen": ["--linear-solver", "sparse_normal_cholesky", "--sparse-backend", "eigen"],
     "iterative_schur": ["--linear-solver", "iterative_schur"],
 }
-# LM settings: dynslam's defaults (tolerances 1e-12, 500 iterations); GTSAM-like (the released
-# profile: first damping 1e-5, stop at a relative decrease of 1e-5, 100 iterations); Ceres's own
-# defaults (tolerances 1e-6 / 1e-10 / 1e-8, 50 iterations, first damping 1e-4).
+# LM settings: dynslam's defaults (the remaining-χ² rule 0.01, tolerances 1e-12, 500
+# iterations); its tight rule (the tolerances alone); GTSAM-like (the released profile: first
+# damping 1e-5, stop at a relative decrease of 1e-5, 100 iterations); Ceres's own defaults
+# (tolerances 1e-6 / 1e-10 / 1e-8, 50 iterations, first damping 1e-4).
 LM = {
     "dynslam": [],
+    "tight": ["--tolerances", "tight"],
     "gtsam_like": ["--initial-lambda", "1e-5", "--function-tolerance", "1e-5",
                    "--max-iterations", "100"],
     "ceres_defaults": ["--function-tolerance", "1e-6", "--gradient-tolerance", "1e-10",

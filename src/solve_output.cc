@@ -114,6 +114,7 @@ JsonValue SolverJson(const SolverOptions& options) {
       {"function_tolerance", options.function_tolerance},
       {"gradient_tolerance", options.gradient_tolerance},
       {"parameter_tolerance", options.parameter_tolerance},
+      {"remaining_chi2", options.remaining_chi2},
       {"initial_lambda", options.initial_lambda},
       {"nonmonotonic_steps", options.nonmonotonic_steps},
       {"fix_first", options.fix_first},

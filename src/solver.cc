@@ -439,6 +439,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     row.accepted = s.step_is_successful;
     row.time_s = s.cumulative_time_in_seconds;  // preprocessing is subtracted after the solve
     row.relative_decrease = s.step_is_valid ? s.relative_decrease : 0;
+    row.step_norm = s.step_norm;
     rows_.push_back(row);
     if (s.step_is_successful) {
       ++accepted_;
@@ -474,8 +475,32 @@ class ConvergenceRecorder : public ceres::IterationCallback {
       } else if (accepted_ >= options_.max_iterations) {
         Stop("no_convergence", "released rule: " + std::to_string(accepted_) + " iterations");
       }
+    } else if (options_.remaining_chi2 > 0) {
+      const double remaining = EstimatedRemainingChi2();
+      if (remaining <= options_.remaining_chi2) {
+        char detail[160];
+        std::snprintf(detail, sizeof detail,
+                      "the chi2 still to gain is estimated at %.3g <= remaining_chi2 %g",
+                      remaining, options_.remaining_chi2);
+        Stop("convergence", detail);
+      }
     }
     return !stop_reason_.empty();
+  }
+  // The χ² still to gain after the last step (docs/SOLVER.md "When a solve stops"), told only
+  // when the last two steps were accepted decreases, the later one smaller: twice the rest of
+  // the geometric series of their ratio r, d·r/(1 − r), and never less than twice the last
+  // step's actual or predicted decrease d. +inf otherwise.
+  double EstimatedRemainingChi2() const {
+    if (rows_.size() < 2) return kInfinity;
+    const StepRecord& last = rows_.back();
+    const StepRecord& before = rows_[rows_.size() - 2];
+    if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
+    const double decrease = last.cost - last.trial_cost;
+    const double ratio = decrease / (before.cost - before.trial_cost);
+    if (!(decrease > 0) || !(ratio < 1)) return kInfinity;
+    const double predicted = decrease / last.relative_decrease;
+    return 2 * std::max(decrease, predicted) * std::max(1.0, ratio / (1 - ratio));
   }
   void Stop(const char* reason, std::string detail) {
     stop_reason_ = reason;
@@ -498,6 +523,9 @@ Status CheckOptions(const SolverOptions& options) {
   if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
   if (!(options.max_time_s >= 0) || !std::isfinite(options.max_time_s)) {
     return Error{"", 0, "max_time_s must be 0 (no limit) or a positive number of seconds"};
+  }
+  if (!(options.remaining_chi2 >= 0) || !std::isfinite(options.remaining_chi2)) {
+    return Error{"", 0, "remaining_chi2 must be 0 (off) or a positive number"};
   }
   if (options.nonmonotonic_steps < -1) {
     return Error{"", 0, "nonmonotonic_steps must be -1 (auto), 0 (off) or a positive count"};
@@ -560,6 +588,7 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
     resolved.parameter_tolerance = 0;
     resolved.max_iterations = 100;
     resolved.nonmonotonic_steps = 0;
+    resolved.remaining_chi2 = 0;  // its own rule
   }
   // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).

@@ -142,8 +142,9 @@ Status CompareVariables(const Graph& ours, const Graph& reference, const VerifyT
     const Role role = kAllRoles[r];
     // Object poses and object-frame points are reported only: at frames with few tracked
     // points they are not determined, and equal-cost solutions differ (docs/SPEC_NOTES.md).
-    const bool asserted = role == Role::kCamera || role == Role::kStaticPoint ||
-                          role == Role::kMotion;
+    const bool asserted = tol.assert_variables && (role == Role::kCamera ||
+                                                   role == Role::kStaticPoint ||
+                                                   role == Role::kMotion);
     const std::string name = RoleName(role);
     const std::string count = std::to_string(d.count) + " variables";
     if (role == Role::kCamera || role == Role::kMotion || role == Role::kObjectPose) {
@@ -167,8 +168,10 @@ void CompareMetrics(const JsonValue& ours, const JsonValue& reference, const std
     const std::string name = prefix.empty() ? key : prefix + "." + key;
     const auto mine = ours.is_object() ? ours.find(key) : ours.end();
     if (value.is_object()) {
+      // One object's means follow that object's variables: asserted with them.
+      const bool leaf_asserted = asserted && (key != "per_object" || tol.assert_variables);
       if (mine != ours.end()) {
-        CompareMetrics(*mine, value, name, tol, asserted, checker);
+        CompareMetrics(*mine, value, name, tol, leaf_asserted, checker);
       } else {
         checker.Bound("metrics." + name, NAN, 0, asserted, "missing from our metrics");
       }

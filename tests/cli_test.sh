@@ -44,6 +44,8 @@ check "unknown option" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out 
 expect_output "unknown option value" "is not one of"
 check "missing file" 2 "$dynslam" solve "$work/missing.g2o" --out "$work/x"
 expect_output "missing file named" "missing.g2o"
+check "--tolerances tight with a --remaining-chi2 rule is a usage error" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --tolerances tight --remaining-chi2 0.1
+expect_output "the usage error names both options" "tolerances tight turns --remaining-chi2 off"
 
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_TRACKXYZ 1 0 zero 0\n' >"$work/bad.g2o"
 check "bad number" 2 "$dynslam" solve "$work/bad.g2o" --out "$work/x"
@@ -104,10 +106,12 @@ expect_output "missing plot scripts give a warning" "^warning: "
 check "compare --no-plots" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_noplots" --formulations wc --no-plots
 if grep -q "^warning: " "$work/out" || [ -e "$work/compare_noplots/trajectory.png" ]; then failed=$((failed + 1)); echo "FAIL: compare --no-plots plotted or warned"; else passed=$((passed + 1)); fi
 
-check "verify against GTSAM tight_exact" 0 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact"
+check "verify a default solve against GTSAM tight_exact" 0 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact" --report-variables
 expect_output "verify passes" "^PASS"
 check "verify beyond tolerance exits 1" 1 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact" --translation-tolerance 1e-12
 expect_output "verify names the worst variable" "worst vertex"
+check "verify --report-variables reports the variables without failing on them" 0 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/wc/tight_exact" --translation-tolerance 1e-12 --report-variables
+expect_output "verify --report-variables marks the variable over tolerance" "(info, over)"
 check "verify against another graph is bad input" 2 "$dynslam" verify "$work/wc" "$data/synthetic/gtsam/oc_b/tight_exact"
 expect_output "verify names the missing vertex" "has no vertex"
 check "a solve stopped by the iteration limit is still usable" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/limit" --max-iterations 2

@@ -266,6 +266,11 @@ class ObjectCentricChartTest : public ::testing::Test {
     options.world_frame_kinematic_residual = world_kinematic;
     return options;
   }
+  // The tight rule: Ceres's tolerances alone, no remaining-χ² stop.
+  static SolverOptions Tight(SolverOptions options) {
+    options.remaining_chi2 = 0;
+    return options;
+  }
   Graph graph_;
 };
 
@@ -367,8 +372,8 @@ TEST_F(ObjectCentricChartTest, DefaultsAndObjectFrameReachTheSameOptimum) {
   ASSERT_TRUE(SolverOptions{}.world_anchored_object_points);
   ASSERT_TRUE(SolverOptions{}.world_frame_kinematic_residual);
   Graph defaults = graph_, object_frame = graph_;
-  Expected<SolveReport> a = Solve(SolverOptions{}, &defaults);
-  Expected<SolveReport> b = Solve(Options(false, false), &object_frame);
+  Expected<SolveReport> a = Solve(Tight(Options(true, true)), &defaults);
+  Expected<SolveReport> b = Solve(Tight(Options(false, false)), &object_frame);
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_NEAR(a->final_cost, b->final_cost, 1e-9 * b->final_cost);
   // The graph holds m_L again, not the solver's w: its cost is the reported final cost.
@@ -381,6 +386,45 @@ TEST_F(ObjectCentricChartTest, DefaultsAndObjectFrameReachTheSameOptimum) {
     largest = std::max(largest, (v.point() - object_frame.Find(id)->point()).norm());
   }
   EXPECT_LT(largest, 1e-4);  // m; the two solves stop at tolerances, not at the exact optimum
+}
+
+// The default stopping rule (SolverOptions::remaining_chi2): the solve stops with termination
+// "convergence" once the χ² it can still gain is estimated at most remaining_chi2, and that
+// estimate holds: twice the distance of the final cost to the tight rule's optimum is at most
+// remaining_chi2. The tight rule takes more steps to get there.
+TEST_F(ObjectCentricChartTest, RemainingChi2RuleStopsWithinItsBoundOfTheOptimum) {
+  Graph tight_graph = graph_;
+  Expected<SolveReport> tight = Solve(Tight(SolverOptions{}), &tight_graph);
+  ASSERT_TRUE(tight.ok()) << tight.error().ToString();
+  for (const double remaining_chi2 : {1.0, 0.01, 1e-4}) {
+    SolverOptions options;
+    options.remaining_chi2 = remaining_chi2;
+    Graph graph = graph_;
+    Expected<SolveReport> report = Solve(options, &graph);
+    ASSERT_TRUE(report.ok()) << report.error().ToString();
+    EXPECT_EQ(report->termination, "convergence") << report->termination_detail;
+    EXPECT_NE(report->termination_detail.find("remaining_chi2"), std::string::npos)
+        << report->termination_detail;
+    EXPECT_TRUE(report->usable);
+    EXPECT_LT(report->steps, tight->steps) << remaining_chi2;
+    EXPECT_GE(report->final_cost, tight->final_cost * (1 - 1e-12)) << remaining_chi2;
+    EXPECT_LE(2 * (report->final_cost - tight->final_cost), remaining_chi2) << remaining_chi2;
+  }
+}
+
+// The estimate needs two accepted decreases in a row: a first step, however small its decrease,
+// never stops the solve by the rule.
+TEST(SolverTest, RemainingChi2RuleNeedsTwoAcceptedStepsInARow) {
+  Graph graph = Read(kTwoPoses);
+  SolverOptions options;
+  options.remaining_chi2 = 1e300;
+  Expected<SolveReport> report = Solve(options, &graph);
+  ASSERT_TRUE(report.ok()) << report.error().ToString();
+  ASSERT_EQ(report->steps, 2);  // the first step's estimate is not told
+  EXPECT_TRUE(report->convergence[0].accepted && report->convergence[1].accepted);
+  EXPECT_EQ(report->termination, "convergence");
+  options.remaining_chi2 = -1;
+  EXPECT_FALSE(Solve(options, &graph).ok());
 }
 
 }  // namespace

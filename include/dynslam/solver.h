@@ -64,6 +64,12 @@ struct SolverOptions {
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
+  // The default stopping rule (docs/SOLVER.md "When a solve stops"): after two accepted steps in
+  // a row, stop once the χ² (twice the cost) still to be gained is estimated at most this. A χ²
+  // gap δ puts every variable, and every function of them, within √δ of its marginal σ of the
+  // optimum (to first order), so 0.01 is a tenth of a σ. 0 turns the rule off: the tight rule,
+  // Ceres's tolerances alone (`--tolerances tight`; the reference tests).
+  double remaining_chi2 = 0.01;
   // The first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial_trust_region_radius; its
   // default is 1e-4). 0 (auto): 1e-6 for graphs with points, 1e-10 for pose graphs, where the
   // first step is then nearly Gauss–Newton's (docs/SOLVER.md has the measurements).
@@ -133,6 +139,8 @@ struct StepRecord {
   // decrease (with non-monotonic steps, the larger of that and the decrease relative to the
   // reference cost). 0 for invalid steps.
   double relative_decrease = 0;
+  // Not in convergence.csv; the 2-norm of the step in the variables' tangent spaces (rad and m).
+  double step_norm = 0;
 };
 
 using CostByKind = std::array<double, kNumEdgeKinds>;
