@@ -14,15 +14,18 @@ at the first accepted step at or below that cost, as TIMINGS.md measures it).
     benchmarks/gtsam_ratios.py --base /tmp/dynslam_ed665dc --new build/release/apps/dynslam \
         [--reference ../shared/reference] [--reps 3] [--out docs/benchmarks/gtsam_ratios.csv]
 
-Prints a Markdown table (medians of --reps runs) and writes every run to --out.
+Prints a Markdown table (medians of --reps runs) and writes every run to --out, the command,
+date and commit to OUT.json; benchmarks/report.py puts the table into docs/BENCHMARKS.md.
 """
 import argparse
 import csv
+import datetime
 import json
 import os
 import re
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -98,22 +101,49 @@ def main():
             writer = csv.DictWriter(f, fieldnames=list(runs[0]))
             writer.writeheader()
             writer.writerows(runs)
+        with open(args.out + ".json", "w") as f:
+            json.dump({"command": "benchmarks/gtsam_ratios.py " + " ".join(sys.argv[1:]),
+                       "date": datetime.date.today().isoformat(), "commit": commit(),
+                       "machine": machine()}, f, indent=1)
+    print("\n".join(table(runs, ratios)))
 
-    print("| graph | new: steps, process s | base: process s | GTSAM / new, processes | "
-          "new: solve s to GTSAM's cost | GTSAM / new, solve to GTSAM's cost |")
-    print("|---|---|---|---|---|---|")
+
+def machine():
+    """The CPU model and core count."""
+    with open("/proc/cpuinfo") as f:
+        model = next((line.split(":", 1)[1].strip() for line in f
+                      if line.startswith("model name")), "unknown CPU")
+    return f"{model}, {os.cpu_count()} cores"
+
+
+def commit():
+    """The checkout's commit (+ "-dirty" with uncommitted changes): what --new was built from."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    head = subprocess.run(["git", "-C", here, "rev-parse", "--short", "HEAD"], text=True,
+                          capture_output=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", here, "status", "--porcelain", "--untracked-files=no"],
+                           text=True, capture_output=True).stdout.strip()
+    return head + ("-dirty" if dirty else "")
+
+
+def table(runs, ratios):
+    """Markdown lines: per graph the medians of `runs` (dicts as in the CSV) and the carried
+    ratios."""
+    lines = ["| graph | dynslam: steps, process s | ed665dc: process s | GTSAM / dynslam, "
+             "processes | dynslam: solve s to GTSAM's cost | ed665dc: same | GTSAM / dynslam, "
+             "solve to GTSAM's cost |", "|---|---|---|---|---|---|---|"]
     for graph in GRAPHS:
         def median(binary, key):
-            values = [r[key] for r in runs if r["graph"] == graph and r["binary"] == binary]
-            return statistics.median(values) if None not in values else float("nan")
+            values = [float(r[key]) if r[key] not in (None, "") else None
+                      for r in runs if r["graph"] == graph and r["binary"] == binary]
+            return statistics.median(values) if values and None not in values else float("nan")
         process_ratio, solve_ratio = ratios[graph]
         new_wall, base_wall = median("new", "wall_s"), median("base", "wall_s")
         new_solve, base_solve = median("new", "to_gtsam_cost_s"), median("base", "to_gtsam_cost_s")
-        steps = median("new", "steps")
-        print(f"| {graph} | {steps:.0f}, {new_wall:.2f} | {base_wall:.2f} | "
-              f"{process_ratio * base_wall / new_wall:.2f}× | {new_solve:.2f} | "
-              f"{solve_ratio * base_solve / new_solve:.2f}× |")
-
+        lines.append(f"| {graph} | {median('new', 'steps'):.0f}, {new_wall:.2f} | {base_wall:.2f} | "
+                     f"{process_ratio * base_wall / new_wall:.2f}× | {new_solve:.2f} | "
+                     f"{base_solve:.2f} | {solve_ratio * base_solve / new_solve:.2f}× |")
+    return lines
 
 if __name__ == "__main__":
     main()

@@ -15,6 +15,9 @@ import pathlib
 import platform
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import gtsam_ratios  # noqa: E402  (beside this script)
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
@@ -62,33 +65,27 @@ def fit_exponent(xs, ys):
     return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
 
 
-def fastest_factorisation(floors):
-    """Seconds of the fastest factorisation of each graph's damped normal matrix."""
-    fastest = {}
-    for f in floors:
-        if f["matrix"] == "normal" and number(f["seconds"]):
-            t = number(f["seconds"])
-            fastest[f["graph"]] = min(t, fastest.get(f["graph"], t))
-    return fastest
-
-
-def gtsam_table(runs, floors):
-    floor = fastest_factorisation(floors)
-    lines = ["| graph | dynslam: steps to GTSAM's released cost | time (s) | GTSAM released: "
-             "iterations | time (s) | speed-up (GTSAM / dynslam) | dynslam: time to "
-             "optimum·(1+1e-6) (s) | dynslam: total (s) | factorisations in GTSAM's time / 10 |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    for r in runs:
-        if r["config"] != "default" or not r["gtsam_released_total"]:
-            continue
-        ours, gtsam = number(r["time_to_released"]), number(r["gtsam_released_total"])
-        budget = gtsam / 10 / floor[r["graph"]] if r["graph"] in floor else None
-        lines.append(f"| {short(r['graph'])} | {r['steps_to_released'] or 'not reached'} | "
-                     f"{fmt(ours)} | {r['gtsam_released_iterations']} | {fmt(gtsam)} | "
-                     f"{fmt(gtsam / ours if ours else None, 2)}× | "
-                     f"{fmt(number(r['time_to_optimum_1e6']))} | {fmt(number(r['time_total']))} | "
-                     f"{fmt(budget, 2)} |")
-    return lines
+def gtsam_section(ratios_csv, reference):
+    """The one-run ratios against GTSAM carried from the reference set's TIMINGS.md
+    (benchmarks/gtsam_ratios.py)."""
+    if not ratios_csv.exists():
+        return [f"Not measured: {ratios_csv} is missing (run benchmarks/gtsam_ratios.py)."]
+    meta = json.loads(pathlib.Path(str(ratios_csv) + ".json").read_text())
+    runs = read(ratios_csv)
+    return [
+        f"    {meta['command']}  # {meta['date']}, commit {meta['commit']}, "
+        f"{meta.get('machine', 'machine not recorded')}",
+        "",
+        "TIMINGS.md (in the reference set) times GTSAM 4.2's `released` profile and dynslam at "
+        "commit ed665dc in one run on one machine of our kind; the script times ed665dc and the "
+        "current commit in one run here (alternating, medians of three) and carries each ratio: "
+        "ratio × ed665dc's time / the current time. Processes: the whole `solve`, each tool with "
+        "its defaults. Solve to GTSAM's cost: Ceres's preprocessing plus the minimiser time at "
+        "the first accepted step at or below GTSAM's `released` final cost. Above 1×, dynslam is "
+        "faster.",
+        "",
+        *gtsam_ratios.table(runs, gtsam_ratios.timings_ratios(reference / "TIMINGS.md")),
+    ]
 
 
 def floor_table(runs, floors):
@@ -208,6 +205,8 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", default=str(ROOT / "out" / "benchmarks"))
     parser.add_argument("--out", default=str(ROOT / "docs" / "BENCHMARKS.md"))
+    parser.add_argument("--reference", default=str(ROOT.parent / "shared" / "reference"),
+                        help="the reference set, for its TIMINGS.md")
     args = parser.parse_args()
     src = pathlib.Path(args.runs)
     runs, floors, scaling = read(src / "runs.csv"), read(src / "floor.csv"), read(src / "scaling.csv")
@@ -232,7 +231,8 @@ def main():
         "",
         "    cmake --build build/release --target dynslam_cli factorization_floor",
         *[f"    {s['command']}  # {s.get('date', 'date not recorded')}, commit "
-          f"{s.get('commit', 'not recorded')}" for s in sweeps],
+          f"{s.get('commit', 'not recorded')}, {s.get('machine', 'machine not recorded')}"
+          for s in sweeps],
         f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
         "",
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
@@ -242,22 +242,14 @@ def main():
             "the current code the first command alone makes every row."
             if len(sweeps) > 1 else "") + ")",
         "",
-        f"Measured on {machine()} (this page generated {datetime.date.today().isoformat()}; each "
-        "sweep's date and commit are beside its command above), one run per configuration, "
-        "nothing else running. GTSAM's times are those stored in the reference set "
-        "(`../shared/reference/*/gtsam/*/released/summary.json`, GTSAM 4.2 LM on a 2-core machine "
-        "of the same kind), so the ratios compare two machines of one kind, not one run.",
+        f"This page generated {datetime.date.today().isoformat()} on {machine()}; each sweep's "
+        "date, commit and machine are beside its command above; one run per configuration, "
+        "nothing else running. Against GTSAM only one-run ratios (below); the sweep's own "
+        "tables have no GTSAM column.",
         "",
-        "## Against GTSAM 4.2 (issue 13 target: ≥ 10× faster to GTSAM's released cost)",
+        "## Against GTSAM 4.2: one-run ratios carried from TIMINGS.md",
         "",
-        "`default` is `dynslam solve GRAPH` with no option. Time to a cost is the minimiser time "
-        "at the first accepted step at or below it (convergence.csv); `total` is Ceres's whole "
-        "solve, until the tolerances (1e-12) stop it. The last column is how many of the fastest "
-        "factorisations of the graph's normal matrix (the floor below) fit in a tenth of GTSAM's "
-        "time: the 10× target needs every step to GTSAM's cost — at least one factorisation "
-        "each — to fit in it.",
-        "",
-        *gtsam_table(runs, floors),
+        *gtsam_section(src / "gtsam_ratios.csv", pathlib.Path(args.reference)),
         "",
         "## The floor: one sparse Cholesky factorisation (target: a step ≤ 1.5× the fastest)",
         "",
