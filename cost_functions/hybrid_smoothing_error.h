@@ -34,10 +34,9 @@ class HybridSmoothingError {
     PoseCompose(L_b_inverse, L_c, forward);
     T error_pose[kPoseSize];
     PoseCompose(back, forward, error_pose);
-    Eigen::Matrix<T, 6, 1> error;
-    SE3Log(error_pose, error.data());
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
-    r = sqrt_information_.cast<T>() * error;
+    T error[6];
+    SE3Log(error_pose, error);
+    Whiten(sqrt_information_, error, residual);
     return true;
   }
 

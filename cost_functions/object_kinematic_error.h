@@ -30,11 +30,11 @@ class ObjectKinematicError {
     PoseCompose(L_curr_w, H_w, L_curr_w_moved);
     T error_pose[kPoseSize];
     PoseCompose(L_curr_w_moved, L_w_prev, error_pose);
-    Eigen::Matrix<T, 6, 1> error;
-    SE3Log(error_pose, error.data());
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
-    r = sqrt_information_.cast<T>() * error;
+    T error[6];
+    SE3Log(error_pose, error);
+    Whiten(sqrt_information_, error, residual);
     if (world_frame_) {
+      Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
       const Eigen::Matrix<T, 3, 3> rotation = se3_internal::Rotation(L_w_curr).toRotationMatrix();
       r.template head<3>() = (rotation * r.template head<3>()).eval();
       r.template tail<3>() = (rotation * r.template tail<3>()).eval();

@@ -24,9 +24,9 @@ class ObjectPointMeasurementError {
     PoseTransformPoint(L_w_o, m_o, p_w);
     Eigen::Matrix<T, 3, 1> p_c;
     PoseInverseTransformPoint(T_w_c, p_w, p_c.data());
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r =
-        sqrt_information_.cast<T>() * (p_c - p_c_measured_.cast<T>());
+    const T error[3] = {p_c[0] - p_c_measured_[0], p_c[1] - p_c_measured_[1],
+                        p_c[2] - p_c_measured_[2]};
+    Whiten(sqrt_information_, error, residual);
     return true;
   }
 

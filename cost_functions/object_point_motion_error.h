@@ -27,9 +27,8 @@ class ObjectPointMotionError {
     PoseTransformPoint(L_w_prev, m_o, p_w_prev);
     Eigen::Matrix<T, 3, 1> p_w_moved;
     PoseTransformPoint(H_w, p_w_prev, p_w_moved.data());
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r =
-        sqrt_information_.cast<T>() * (p_w_curr - p_w_moved);
+    const Eigen::Matrix<T, 3, 1> error = p_w_curr - p_w_moved;
+    Whiten(sqrt_information_, error.data(), residual);
     return true;
   }
 

@@ -26,8 +26,7 @@ class ObjectPointMotionErrorDsc {
     PoseTransformPoint(H_w, p_w_prev, p_w_moved);
     Eigen::Matrix<T, 3, 1> p_o_curr;
     PoseInverseTransformPoint(L_w_curr, p_w_moved, p_o_curr.data());
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r = sqrt_information_.cast<T>() * p_o_curr;
+    Whiten(sqrt_information_, p_o_curr.data(), residual);
     return true;
   }
 

@@ -23,9 +23,10 @@ class PointMotionError {
     Eigen::Matrix<T, 3, 1> p_w_moved;
     PoseTransformPoint(H_w, p_w_prev, p_w_moved.data());
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_curr(p_w_curr);
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r =
-        sqrt_information_.cast<T>() * (p_curr - p_w_moved - measurement_.cast<T>());
+    const T error[3] = {p_curr[0] - p_w_moved[0] - measurement_[0],
+                        p_curr[1] - p_w_moved[1] - measurement_[1],
+                        p_curr[2] - p_w_moved[2] - measurement_[2]};
+    Whiten(sqrt_information_, error, residual);
     return true;
   }
 

@@ -23,14 +23,11 @@ class PoseBetweenError {
     PoseInverse(T_w_a, T_a_w);
     T T_a_b[kPoseSize];
     PoseCompose(T_a_w, T_w_b, T_a_b);
-    T T_measured_a[kPoseSize];
-    for (int i = 0; i < kPoseSize; ++i) T_measured_a[i] = T(T_measured_a_.data[i]);
     T T_measured_b[kPoseSize];
-    PoseCompose(T_measured_a, T_a_b, T_measured_b);
-    Eigen::Matrix<T, 6, 1> error;
-    SE3Log(T_measured_b, error.data());
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
-    r = sqrt_information_.cast<T>() * error;
+    PoseComposeConstant(T_measured_a_, T_a_b, T_measured_b);
+    T error[6];
+    SE3Log(T_measured_b, error);
+    Whiten(sqrt_information_, error, residual);
     return true;
   }
 

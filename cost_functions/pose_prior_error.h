@@ -19,14 +19,11 @@ class PosePriorError {
 
   template <typename T>
   bool operator()(const T* const T_w_x, T* residual) const {
-    T T_measured_w[kPoseSize];
-    for (int i = 0; i < kPoseSize; ++i) T_measured_w[i] = T(T_measured_w_.data[i]);
     T T_measured_x[kPoseSize];
-    PoseCompose(T_measured_w, T_w_x, T_measured_x);
-    Eigen::Matrix<T, 6, 1> error;
-    SE3Log(T_measured_x, error.data());
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
-    r = sqrt_information_.cast<T>() * error;
+    PoseComposeConstant(T_measured_w_, T_w_x, T_measured_x);
+    T error[6];
+    SE3Log(T_measured_x, error);
+    Whiten(sqrt_information_, error, residual);
     return true;
   }
 

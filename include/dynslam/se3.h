@@ -93,6 +93,41 @@ void PoseInverseTransformPoint(const T* pose, const T* p, T* out) {
   out[2] = result.z();
 }
 
+// ab = a · b for a constant pose a (doubles) and b of any scalar type: the products of
+// PoseCompose in the same order, with double × T multiplications where PoseCompose would multiply
+// constant Jets (faster under autodiff, the same values).
+template <typename T>
+void PoseComposeConstant(const Pose& a, const T* b, T* ab) {
+  using namespace se3_internal;
+  const Eigen::Quaterniond qa = a.rotation();
+  const Eigen::Quaternion<T> qb = Rotation(b);
+  const Eigen::Quaternion<T> q(qa.w() * qb.w() - qa.x() * qb.x() - qa.y() * qb.y() - qa.z() * qb.z(),
+                               qa.w() * qb.x() + qa.x() * qb.w() + qa.y() * qb.z() - qa.z() * qb.y(),
+                               qa.w() * qb.y() + qa.y() * qb.w() + qa.z() * qb.x() - qa.x() * qb.z(),
+                               qa.w() * qb.z() + qa.z() * qb.w() + qa.x() * qb.y() - qa.y() * qb.x());
+  // Eigen's q * v: v + w·(2 u×v) + u×(2 u×v), u = q.vec().
+  const Vector3<T> v = Translation(b);
+  const Eigen::Vector3d u = qa.vec();
+  Vector3<T> uv(u.y() * v.z() - u.z() * v.y(), u.z() * v.x() - u.x() * v.z(),
+                u.x() * v.y() - u.y() * v.x());
+  uv += uv;
+  const Vector3<T> u_uv(u.y() * uv.z() - u.z() * uv.y(), u.z() * uv.x() - u.x() * uv.z(),
+                        u.x() * uv.y() - u.y() * uv.x());
+  const Vector3<T> t = v + qa.w() * uv + u_uv + a.translation();
+  Store(q, t, ab);
+}
+
+// r = S · e for an upper-triangular S of doubles (SqrtInformation) and e of any scalar type:
+// double × T products only, the zeros below the diagonal skipped (faster under autodiff).
+template <int N, typename T>
+void Whiten(const Eigen::Matrix<double, N, N>& S, const T* e, T* r) {
+  for (int i = 0; i < N; ++i) {
+    T sum = S(i, i) * e[i];
+    for (int j = i + 1; j < N; ++j) sum += S(i, j) * e[j];
+    r[i] = sum;
+  }
+}
+
 // pose = Exp(ξ), ξ = [ω; ρ].
 template <typename T>
 void SE3Exp(const T* xi, T* pose) {
