@@ -62,7 +62,8 @@ def solve_one(args, seq_dir, seq, formulation, init, variant):
         start = time.time()
         try:
             run([args.dynslam, "solve", graph, "--gt", os.path.join(seq_dir, "frontend.gt.txt"),
-                 "--out", out] + VARIANTS[variant], out + ".log", args.timeout)
+                 "--out", out, "--tolerances", "tight"] + VARIANTS[variant], out + ".log",
+                args.timeout)
         except subprocess.TimeoutExpired:
             print(f"  {seq} {formulation} {init} {variant}: timed out", file=sys.stderr)
             return None

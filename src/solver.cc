@@ -498,7 +498,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
     const double decrease = last.cost - last.trial_cost;
     const double ratio = decrease / (before.cost - before.trial_cost);
-    if (!(decrease > 0) || !(ratio < 1)) return kInfinity;
+    if (!(decrease > 0) || !(ratio > 0 && ratio < 1)) return kInfinity;
     const double predicted = decrease / last.relative_decrease;
     return 2 * std::max(decrease, predicted) * std::max(1.0, ratio / (1 - ratio));
   }

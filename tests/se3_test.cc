@@ -133,6 +133,38 @@ TEST(SE3Test, SqrtInformationIsTheUpperCholeskyFactor) {
   EXPECT_LT(s.triangularView<Eigen::StrictlyLower>().toDenseMatrix().norm(), 0.0 + 1e-300);
 }
 
+// The autodiff shortcuts of the residuals: composing with a constant pose and whitening with an
+// upper-triangular factor give, value and derivative, what the generic Jet code gives.
+TEST(SE3Test, ComposeConstantAndWhitenEqualTheGenericJetCode) {
+  using Jet = ceres::Jet<double, 7>;
+  const Pose a = Exp(Xi(0.3, -1.2, 2.5, 1.0, -2.0, 0.5));
+  const Pose b = Exp(Xi(-2.0, 0.4, 0.9, -3.0, 0.2, 7.0));
+  Jet b_jet[7], a_jet[7], expected[7], ours[7];
+  for (int i = 0; i < 7; ++i) {
+    b_jet[i] = Jet(b.data[i], i);
+    a_jet[i] = Jet(a.data[i]);
+  }
+  PoseCompose(a_jet, b_jet, expected);
+  PoseComposeConstant(a, b_jet, ours);
+  for (int k = 0; k < 7; ++k) {
+    EXPECT_NEAR(ours[k].a, expected[k].a, 1e-15 * (1 + std::abs(expected[k].a))) << k;
+    for (int i = 0; i < 7; ++i) EXPECT_NEAR(ours[k].v[i], expected[k].v[i], 1e-15) << k << i;
+  }
+  Matrix6d m = Matrix6d::Random();
+  const Matrix6d s = SqrtInformation(Matrix6d(m * m.transpose() + Matrix6d::Identity()));
+  Jet e[6], r[6];
+  for (int i = 0; i < 6; ++i) e[i] = ours[i];
+  Whiten(s, e, r);
+  const Eigen::Matrix<Jet, 6, 1> generic =
+      s.cast<Jet>() * Eigen::Map<const Eigen::Matrix<Jet, 6, 1>>(e);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(r[k].a, generic[k].a, 1e-14 * (1 + std::abs(generic[k].a))) << k;
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_NEAR(r[k].v[i], generic[k].v[i], 1e-14 * (1 + std::abs(generic[k].v[i]))) << k;
+    }
+  }
+}
+
 // Ceres's manifold invariants (Plus/Minus inverse of each other, Jacobians against numeric
 // differences, MinusJacobian·PlusJacobian = I) at identity, generic poses, near π, and for
 // small and generic steps (the invariant checks are relative to the step, so a 1e-9 step

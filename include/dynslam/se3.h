@@ -95,7 +95,8 @@ void PoseInverseTransformPoint(const T* pose, const T* p, T* out) {
 
 // ab = a · b for a constant pose a (doubles) and b of any scalar type: the products of
 // PoseCompose in the same order, with double × T multiplications where PoseCompose would multiply
-// constant Jets (faster under autodiff, the same values).
+// constant Jets (faster under autodiff; the same values to rounding — Eigen may vectorise the
+// double quaternion product differently).
 template <typename T>
 void PoseComposeConstant(const Pose& a, const T* b, T* ab) {
   using namespace se3_internal;
