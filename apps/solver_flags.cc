@@ -117,10 +117,13 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "as SPEC §1.3 writes it (docs/CONVERGENCE.md)");
   parser->AddFlag("fix-first", &fix_first_,
                   "hold the smallest-id pose constant (needed when the graph has no prior)");
+  std::string kinds;
+  for (const EdgeKind kind : kAllEdgeKinds) {
+    kinds += std::string(kinds.empty() ? "" : " ") + EdgeKindName(kind);
+  }
   parser->AddString("robust", &robust_,
                     "robust kernels per edge kind, e.g. point=huber:1.345,dynamic_point=cauchy:2 "
-                    "(kinds: prior odometry smoothing point dynamic_point motion object_point "
-                    "object_motion kinematic object_prior)",
+                    "(kinds: " + kinds + ")",
                     "KIND=TYPE:K,...");
 }
 
