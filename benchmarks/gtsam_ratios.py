@@ -22,7 +22,7 @@ import csv
 import datetime
 import json
 import os
-import re
+import platform
 import statistics
 import subprocess
 import sys
@@ -109,11 +109,15 @@ def main():
 
 
 def machine():
-    """The CPU model and core count."""
-    with open("/proc/cpuinfo") as f:
-        model = next((line.split(":", 1)[1].strip() for line in f
-                      if line.startswith("model name")), "unknown CPU")
-    return f"{model}, {os.cpu_count()} cores"
+    """The CPU model and core count (benchmarks/report.py names the page's machine with it)."""
+    model = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            model = next((line.split(":", 1)[1].strip() for line in f
+                          if line.startswith("model name")), "")
+    except OSError:
+        pass
+    return f"{model or platform.processor()}, {os.cpu_count()} cores"
 
 
 def commit():
@@ -144,6 +148,7 @@ def table(runs, ratios):
                      f"{process_ratio * base_wall / new_wall:.2f}× | {new_solve:.2f} | "
                      f"{base_solve:.2f} | {solve_ratio * base_solve / new_solve:.2f}× |")
     return lines
+
 
 if __name__ == "__main__":
     main()

@@ -10,9 +10,7 @@ import csv
 import datetime
 import json
 import math
-import os
 import pathlib
-import platform
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
@@ -42,19 +40,6 @@ def short(graph):
 
 def fmt(x, digits=3):
     return "—" if x is None else f"{x:.{digits}g}"
-
-
-def machine():
-    model = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return f"{model or platform.processor()}, {os.cpu_count()} cores"
 
 
 def fit_exponent(xs, ys):
@@ -242,8 +227,9 @@ def main():
             "the current code the first command alone makes every row."
             if len(sweeps) > 1 else "") + ")",
         "",
-        f"This page generated {datetime.date.today().isoformat()} on {machine()}; each sweep's "
-        "date, commit and machine are beside its command above; one run per configuration, "
+        f"This page generated {datetime.date.today().isoformat()} on {gtsam_ratios.machine()}; "
+        "each sweep's date, commit and machine are beside its command above; one run per "
+        "configuration, "
         "nothing else running. Against GTSAM only one-run ratios (below); the sweep's own "
         "tables have no GTSAM column.",
         "",

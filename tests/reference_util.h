@@ -93,6 +93,15 @@ inline int ResidualsInGtsamNearPiBranch(const Graph& graph) {
   return count;
 }
 
+// What the remaining-χ² stopping rule bounds (docs/SOLVER.md): the χ² of a final cost above the
+// optimum of the tight_exact solve in `tight_exact_dir`, twice the cost difference. NaN when its
+// summary.json cannot be read (so a bound on it fails).
+inline double Chi2AboveTightExact(double final_cost, const std::string& tight_exact_dir) {
+  Expected<JsonValue> summary =
+      ReadJsonFile((std::filesystem::path(tight_exact_dir) / "summary.json").string());
+  return summary.ok() ? 2 * (final_cost - NumberAt(*summary, {"final_cost"})) : std::nan("");
+}
+
 inline double RelativeDifference(double value, double reference) {
   return std::abs(value - reference) / std::max(std::abs(reference), 1e-300);
 }
