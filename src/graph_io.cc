@@ -21,6 +21,7 @@
 
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
+#include "src/number_text.h"
 
 namespace dynslam {
 namespace {
@@ -556,9 +557,8 @@ class Writer {
     *out_ += std::to_string(value);
   }
   void Number(double value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), " %.17g", value);
-    *out_ += buffer;
+    *out_ += ' ';
+    AppendNumber(out_, value);
   }
   void PoseFields(const Pose& pose) {
     for (const int i : {4, 5, 6, 0, 1, 2, 3}) Number(pose.data[i]);

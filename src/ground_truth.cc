@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "dynslam/file_io.h"
+#include "src/number_text.h"
 
 namespace dynslam {
 namespace {
@@ -111,11 +111,10 @@ Status WriteGroundTruth(const GroundTruth& ground_truth, const std::string& path
   std::string text;
   std::istringstream header_lines(header);
   for (std::string line; std::getline(header_lines, line);) text += "# " + line + "\n";
-  char buffer[64];
   auto pose_fields = [&](const Pose& pose) {
     for (const int i : {4, 5, 6, 0, 1, 2, 3}) {
-      std::snprintf(buffer, sizeof(buffer), " %.17g", pose.data[i]);
-      text += buffer;
+      text += ' ';
+      AppendNumber(&text, pose.data[i]);
     }
     text += "\n";
   };

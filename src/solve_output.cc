@@ -1,28 +1,20 @@
 #include "dynslam/solve_output.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "src/json_io.h"
+#include "src/number_text.h"
 
 namespace dynslam {
 namespace {
 
-std::string Format(double value) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
-}
-
 void AppendPose(std::string& line, const Pose& pose) {
   const auto& d = pose.data;
-  for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += "," + Format(d[i]);  // tx ty tz qx qy qz qw
+  for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += "," + NumberText(d[i]);  // tx ty tz qx qy qz qw
 }
 
 std::string CamerasCsv(const Graph& graph) {
@@ -67,8 +59,8 @@ std::string ConvergenceCsv(const SolveReport& report) {
   std::string text = "step,iteration,lambda,cost,trial_cost,accepted,time_s\n";
   for (const StepRecord& row : report.convergence) {
     text += std::to_string(row.step) + "," + std::to_string(row.iteration) + "," +
-            Format(row.lambda) + "," + Format(row.cost) + "," + Format(row.trial_cost) + "," +
-            (row.accepted ? "1" : "0") + "," + Format(row.time_s) + "\n";
+            NumberText(row.lambda) + "," + NumberText(row.cost) + "," + NumberText(row.trial_cost) + "," +
+            (row.accepted ? "1" : "0") + "," + NumberText(row.time_s) + "\n";
   }
   return text;
 }

@@ -1,10 +1,10 @@
 #include "dynslam/trajectory_export.h"
 
-#include <cstdio>
 #include <filesystem>
 
 #include "dynslam/file_io.h"
 #include "dynslam/metrics.h"
+#include "src/number_text.h"
 
 namespace dynslam {
 namespace {
@@ -25,12 +25,6 @@ void AddPair(const std::string& name, const std::map<int64_t, Pose>& estimate,
   if (estimated.poses.empty()) return;
   estimates->push_back(std::move(estimated));
   if (ground_truth) truths->push_back(std::move(true_one));
-}
-
-std::string Number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
 }
 
 }  // namespace
@@ -81,15 +75,15 @@ std::string FormatTrajectory(const Trajectory& trajectory, TrajectoryFormat form
   for (const auto& [frame, pose] : trajectory.poses) {
     std::string line;
     if (format == TrajectoryFormat::kTum) {
-      line = Number(static_cast<double>(frame) / rate_hz);
-      for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += " " + Number(pose.data[i]);
+      line = NumberText(static_cast<double>(frame) / rate_hz);
+      for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += " " + NumberText(pose.data[i]);
     } else {
       const Eigen::Matrix3d rotation = pose.rotation().toRotationMatrix();
       const Eigen::Vector3d translation = pose.translation();
       for (int row = 0; row < 3; ++row) {
         for (int col = 0; col < 4; ++col) {
           if (!line.empty()) line += " ";
-          line += Number(col < 3 ? rotation(row, col) : translation(row));
+          line += NumberText(col < 3 ? rotation(row, col) : translation(row));
         }
       }
     }

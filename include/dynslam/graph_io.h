@@ -4,8 +4,8 @@
 // and the problem; it never aborts. 6×6 information is permuted from the file's g2o order
 // (translation first) to tangent order [ω; ρ] exactly once here, and back on writing (§1.2).
 // Quaternions whose norm differs from 1 by more than 1e-12 are normalised (SPEC §0). Writing
-// uses %.17g, so read → write → read is bit-exact. After reading, roles are assigned
-// (graph.h, AssignRoles).
+// uses the shortest form that reads back exactly, so read → write → read is bit-exact. After
+// reading, roles are assigned (graph.h, AssignRoles).
 #ifndef DYNSLAM_GRAPH_IO_H_
 #define DYNSLAM_GRAPH_IO_H_
 
