@@ -93,8 +93,12 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "0: off (docs/SOLVER.md)",
                     0, 1e300);
   parser->AddChoice("tolerances", &tolerances_, {"default", "tight"},
-                    "tight: no --remaining-chi2 rule, only the three tolerances (to the optimum "
-                    "to ~1e-10 relative; the reference tests)");
+                    "tight: no --remaining-chi2 rule and no --extrapolation, only the three "
+                    "tolerances (to the optimum to ~1e-10 relative; the reference tests)");
+  parser->AddChoice("extrapolation", &extrapolation_, {"on", "off"},
+                    "on: when two steps in a row gain 1.5x what their model predicted, try "
+                    "moving on along them 2, 4, 8, ... times as far, and do so before a "
+                    "--remaining-chi2 stop (docs/SOLVER.md)");
   parser->AddDouble("initial-lambda", &initial_lambda_,
                     "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
                     "radius); 0: 1e-6 for graphs with points, 1e-10 for pose graphs",
@@ -143,7 +147,12 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
     if (parser_->Given("remaining-chi2") && remaining_chi2_ > 0) {
       return std::string("--tolerances tight turns --remaining-chi2 off; give one of them");
     }
-    options->remaining_chi2 = 0;
+    if (parser_->Given("extrapolation") && extrapolation_ == "on") {
+      return std::string("--tolerances tight turns --extrapolation off; give one of them");
+    }
+    *options = TightRule(*options);
+  } else {
+    options->extrapolate = extrapolation_ == "on";
   }
   options->initial_lambda = initial_lambda_;
   options->nonmonotonic_steps = static_cast<int>(nonmonotonic_steps_);

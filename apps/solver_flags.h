@@ -32,6 +32,7 @@ class SolverFlags {
   double parameter_tolerance_;
   double remaining_chi2_;
   std::string tolerances_ = "default";
+  std::string extrapolation_ = defaults_.extrapolate ? "on" : "off";
   double initial_lambda_;
   int64_t nonmonotonic_steps_;
   bool fix_first_;

@@ -4,10 +4,11 @@
 // and, every `--cost-every` steps, the cost per edge kind. Then names the variables that move
 // last: those farthest from the final values once the cost is within 1e-6 of the final cost.
 //
-//   convergence_probe GRAPH [--remaining-chi2 X] [--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N]
-//                           [--minimizer lm|dogleg] [--cost-every N] [--top N]
+//   convergence_probe GRAPH [--remaining-chi2 X] [--extrapolation on|off] [--max-iterations N]
+//                           [--initial-lambda X] [--nonmonotonic-steps N] [--minimizer lm|dogleg]
+//                           [--cost-every N] [--top N]
 //
-// Prints CSV blocks to stdout: "steps" (one row per linear solve), "gap" (per accepted step and
+// Prints CSV blocks to stdout: "steps" (one row per linear solve or extrapolation), "gap" (per accepted step and
 // role: RMS rotation [rad] and translation/position [m] distance to the final values), "cost"
 // (per sampled accepted step and edge kind), "late" (the top variables still moving).
 #include <algorithm>
@@ -56,6 +57,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
     const bool has_value = i + 1 < argc;
     if (a == "--remaining-chi2" && has_value) {
       args->options.remaining_chi2 = std::atof(argv[++i]);
+    } else if (a == "--extrapolation" && has_value) {
+      args->options.extrapolate = std::string(argv[++i]) == "on";
     } else if (a == "--max-iterations" && has_value) {
       args->options.max_iterations = std::atoi(argv[++i]);
     } else if (a == "--initial-lambda" && has_value) {
@@ -204,8 +207,9 @@ int main(int argc, char** argv) {
   dynslam::Args args;
   if (!dynslam::ParseArgs(argc, argv, &args)) {
     std::fprintf(stderr,
-                 "usage: convergence_probe GRAPH [--max-iterations N] [--initial-lambda X] "
-                 "[--nonmonotonic-steps N] [--minimizer lm|dogleg] [--cost-every N] [--top N]\n");
+                 "usage: convergence_probe GRAPH [--remaining-chi2 X] [--extrapolation on|off] "
+                 "[--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N] "
+                 "[--minimizer lm|dogleg] [--cost-every N] [--top N]\n");
     return 2;
   }
   return dynslam::Run(args);

@@ -27,6 +27,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // tolerances, and the λ at which it gives up.
 constexpr double kReleasedTolerance = 1e-5;
 constexpr double kReleasedMaxLambda = 1e5;
+// SolverOptions::extrapolate: the step quality ρ (actual / predicted decrease) of two accepted
+// steps in a row that starts an extrapolation, and the largest factor it moves by.
+constexpr double kExtrapolationRho = 1.5;
+constexpr double kMaxExtrapolation = 64;
 
 struct NamedEnum {
   const char* name;
@@ -87,6 +91,15 @@ class Assembly {
   ceres::Problem& problem() { return *problem_; }
   // Cost per kind at the current values of the blocks.
   CostByKind Evaluate();
+  // The total cost at the current values (`threads` evaluate it).
+  double Cost(int threads);
+  // The values of every block (a state of the solve) and setting them back.
+  using Values = std::vector<std::array<double, kPoseSize>>;
+  const Values& values() const { return values_; }
+  void SetValues(const Values& values) { values_ = values; }  // same size: blocks stay put
+  // Sets every block to from ⊞ alpha·(to ⊟ from): along the manifold's tangent for poses, along
+  // the straight line for points; blocks that `from` and `to` agree on are left at `to`.
+  void MoveAlong(const Values& from, const Values& to, double alpha);
   void WriteBack(Graph* graph) const;
   // An error naming the first edge of `kind` whose cost is not finite, if any.
   Status CheckFinite(EdgeKind kind);
@@ -230,6 +243,31 @@ CostByKind Assembly::Evaluate() {
     problem_->Evaluate(evaluate_options, &cost[k], nullptr, nullptr, nullptr);
   }
   return cost;
+}
+
+double Assembly::Cost(int threads) {
+  ceres::Problem::EvaluateOptions evaluate_options;
+  evaluate_options.num_threads = threads;
+  double cost = 0;
+  problem_->Evaluate(evaluate_options, &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+void Assembly::MoveAlong(const Values& from, const Values& to, double alpha) {
+  for (size_t i = 0; i < values_.size(); ++i) {
+    if (from[i] == to[i]) {
+      values_[i] = to[i];
+    } else if (types_[i] == VertexType::kPose) {
+      double delta[kTangentSize];
+      manifold_.Minus(to[i].data(), from[i].data(), delta);
+      for (double& d : delta) d *= alpha;
+      manifold_.Plus(from[i].data(), delta, values_[i].data());
+    } else {
+      for (int k = 0; k < kPointSize; ++k) {
+        values_[i][k] = from[i][k] + alpha * (to[i][k] - from[i][k]);
+      }
+    }
+  }
 }
 
 Status Assembly::CheckFinite(EdgeKind kind) {
@@ -424,36 +462,74 @@ class ConvergenceRecorder : public ceres::IterationCallback {
                       Clock::time_point start)
       : options_(options), assembly_(assembly), scratch_(scratch), start_(start) {}
 
+  // Ceres restarts after an extrapolation (Solve); each run is a segment whose clock starts at
+  // `offset_s` seconds after the first run started.
+  void BeginSegment(double offset_s) { offset_s_ = offset_s; }
+
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     if (s.iteration == 0) {
       accepted_cost_ = s.cost;
       radius_ = s.trust_region_radius;
+      if (options_.extrapolate) {
+        before_ = assembly_->values();
+        two_before_.clear();
+      }
       return StopRequested() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
     }
     StepRecord row;
-    row.step = static_cast<int>(rows_.size()) + 1;
-    row.iteration = accepted_ + 1;
     row.lambda = 1.0 / radius_;
-    row.cost = accepted_cost_;
     row.trial_cost = s.step_is_valid ? s.cost : kInfinity;
     row.accepted = s.step_is_successful;
-    row.time_s = s.cumulative_time_in_seconds;  // preprocessing is subtracted after the solve
+    row.time_s = offset_s_ + s.cumulative_time_in_seconds;  // less preprocessing, after the solve
     row.relative_decrease = s.step_is_valid ? s.relative_decrease : 0;
     row.step_norm = s.step_norm;
-    rows_.push_back(row);
-    if (s.step_is_successful) {
-      ++accepted_;
-      accepted_cost_ = s.cost;
-    }
     radius_ = s.trust_region_radius;
+    Record(row);
+    if (StopRequested()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    if (options_.extrapolate && s.step_is_successful) {
+      const bool wanted = ExtrapolationWanted() && !two_before_.empty();
+      if (wanted) extrapolation_from_ = std::move(two_before_);
+      two_before_ = std::move(before_);
+      before_ = assembly_->values();
+      if (wanted) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;  // Solve extrapolates, restarts
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+
+  // Adds a row (numbering it) and reports it to the options' hooks.
+  void Record(StepRecord row) {
+    row.step = static_cast<int>(rows_.size()) + 1;
+    row.iteration = accepted_ + 1;
+    row.cost = accepted_cost_;
+    rows_.push_back(row);
+    if (row.accepted) {
+      ++accepted_;
+      accepted_cost_ = row.trial_cost;
+    }
     if (options_.on_step) options_.on_step(row);
-    if (s.step_is_successful && options_.on_accepted_state) {
+    if (row.accepted && options_.on_accepted_state) {
       assembly_->WriteBack(scratch_);
       options_.on_accepted_state(row, *scratch_);
     }
-    return StopRequested() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
   }
 
+  // The state two accepted steps back when the recorder ended the segment to extrapolate, else
+  // empty; taking it clears the request.
+  Assembly::Values TakeExtrapolationRequest() { return std::move(extrapolation_from_); }
+  // True when the request is the check before a remaining-χ² stop: the solve stops unless the
+  // extrapolation gains more than the rule allows (ConfirmStop).
+  bool probing() const { return !probe_detail_.empty(); }
+  void ConfirmStop(double gained_chi2) {
+    char gained[96];
+    std::snprintf(gained, sizeof gained, "; extrapolating gained %.3g", gained_chi2);
+    Stop("convergence", probe_detail_ + gained);
+    probe_detail_.clear();
+  }
+  void ContinueAfterProbe() { probe_detail_.clear(); }
+  // Extrapolation stops for the rest of the solve (after one that found no lower cost).
+  void StopExtrapolating() { extrapolating_ = false; }
+  const std::vector<StepRecord>& rows() const { return rows_; }
+  double radius() const { return radius_; }
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
   // The termination the recorder ended the solve with ("interrupted", "time_limit", or, under
   // the released rule, "convergence" or "no_convergence"), else empty; and why.
@@ -482,25 +558,52 @@ class ConvergenceRecorder : public ceres::IterationCallback {
         std::snprintf(detail, sizeof detail,
                       "the chi2 still to gain is estimated at %.3g <= remaining_chi2 %g",
                       remaining, options_.remaining_chi2);
+        if (extrapolating_ && !two_before_.empty()) {  // measure first: Solve extrapolates
+          extrapolation_from_ = two_before_;
+          probe_detail_ = detail;
+          return true;
+        }
         Stop("convergence", detail);
       }
     }
     return !stop_reason_.empty();
   }
+  // SolverOptions::extrapolate: the last two rows are accepted linear solves whose decrease the
+  // model underestimated by ρ ≥ kExtrapolationRho.
+  bool ExtrapolationWanted() const {
+    if (!extrapolating_ || rows_.size() < 2) return false;
+    for (size_t i = rows_.size() - 2; i < rows_.size(); ++i) {
+      const StepRecord& row = rows_[i];
+      if (!row.accepted || row.extrapolation || row.relative_decrease < kExtrapolationRho) {
+        return false;
+      }
+    }
+    return true;
+  }
   // The χ² still to gain after the last step (docs/SOLVER.md "When a solve stops"), told only
   // when the last two steps were accepted decreases, the later one smaller: twice the rest of
   // the geometric series of their ratio r, d·r/(1 − r), and never less than twice the last
-  // step's actual or predicted decrease d. +inf otherwise.
+  // step's actual or predicted decrease d, nor than twice what the 1-D quadratic that explains
+  // the step's quality ρ ∈ (1, 2) leaves along the step, d·(ρ − 1)²/((2 − ρ)·ρ) (a model whose
+  // curvature is 1/(2 − ρ) times too high: its steps undershoot). +inf otherwise.
   double EstimatedRemainingChi2() const {
     if (rows_.size() < 2) return kInfinity;
     const StepRecord& last = rows_.back();
     const StepRecord& before = rows_[rows_.size() - 2];
     if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
+    // An extrapolation breaks the series: the step after it also corrects its overshoot, so the
+    // ratio is read only from the second and third steps after one.
+    for (size_t i = rows_.size() >= 3 ? rows_.size() - 3 : 0; i < rows_.size(); ++i) {
+      if (rows_[i].extrapolation) return kInfinity;
+    }
     const double decrease = last.cost - last.trial_cost;
     const double ratio = decrease / (before.cost - before.trial_cost);
     if (!(decrease > 0) || !(ratio > 0 && ratio < 1)) return kInfinity;
-    const double predicted = decrease / last.relative_decrease;
-    return 2 * std::max(decrease, predicted) * std::max(1.0, ratio / (1 - ratio));
+    const double rho = last.relative_decrease;
+    if (rho >= 2) return kInfinity;
+    const double along_the_step = rho > 1 ? decrease * (rho - 1) * (rho - 1) / ((2 - rho) * rho) : 0;
+    const double series = std::max(decrease, decrease / rho) * std::max(1.0, ratio / (1 - ratio));
+    return 2 * std::max(series, along_the_step);
   }
   void Stop(const char* reason, std::string detail) {
     stop_reason_ = reason;
@@ -516,7 +619,39 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   double accepted_cost_ = 0;
   double radius_ = 1;
   int accepted_ = 0;
+  double offset_s_ = 0;
+  bool extrapolating_ = true;
+  Assembly::Values two_before_, before_;  // the states two accepted steps back and one back
+  Assembly::Values extrapolation_from_;  // set when the segment ended to extrapolate
+  std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
 };
+
+// SolverOptions::extrapolate: from the state `from` two accepted steps back (cost c_from) to
+// the assembly's current state (cost c), tries α = 2, 4, 8, … ≤ kMaxExtrapolation along the
+// two steps while the cost keeps falling, and leaves the assembly at the lowest cost found.
+// Returns its row (extrapolation, lambda 0), or nothing — the assembly back where it was — when
+// no α > 1 lowered the cost.
+std::optional<StepRecord> Extrapolate(const Assembly::Values& from, double cost, int threads,
+                                      Assembly* assembly) {
+  const Assembly::Values to = assembly->values();
+  double best_alpha = 1, best_cost = cost;
+  for (double alpha = 2; alpha <= kMaxExtrapolation; alpha *= 2) {
+    assembly->MoveAlong(from, to, alpha);
+    const double trial = assembly->Cost(threads);
+    if (!(trial < best_cost)) break;  // NaN too
+    best_alpha = alpha;
+    best_cost = trial;
+  }
+  assembly->MoveAlong(from, to, best_alpha);
+  if (best_alpha == 1) return std::nullopt;
+  StepRecord row;
+  row.lambda = 0;
+  row.trial_cost = best_cost;
+  row.accepted = true;
+  row.relative_decrease = best_alpha;  // for analysis: the factor moved by
+  row.extrapolation = true;
+  return row;
+}
 
 Status CheckOptions(const SolverOptions& options) {
   if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
@@ -589,6 +724,7 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
     resolved.max_iterations = 100;
     resolved.nonmonotonic_steps = 0;
     resolved.remaining_chi2 = 0;  // its own rule
+    resolved.extrapolate = false;
   }
   // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
@@ -634,6 +770,74 @@ Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOption
   std::copy(crs.cols.begin(), crs.cols.end(), out.jacobian.innerIndexPtr());
   std::copy(crs.values.begin(), crs.values.end(), out.jacobian.valuePtr());
   return out;
+}
+
+// Ceres's times summed over the runs of RunSegments; extrapolations count as minimiser and
+// evaluation time.
+struct SegmentTimes {
+  int segments = 0;
+  double first_preprocessing_s = 0;
+  double total_s = 0, minimizer_s = 0, preprocessor_s = 0, evaluation_s = 0, linear_solver_s = 0;
+
+  void Add(const ceres::Solver::Summary& summary) {
+    auto seconds = [](double s) { return std::max(0.0, s); };  // Ceres: −1 for a phase not run
+    if (segments++ == 0) first_preprocessing_s = seconds(summary.preprocessor_time_in_seconds);
+    total_s += seconds(summary.total_time_in_seconds);
+    minimizer_s += seconds(summary.minimizer_time_in_seconds);
+    preprocessor_s += seconds(summary.preprocessor_time_in_seconds);
+    evaluation_s += seconds(summary.residual_evaluation_time_in_seconds) +
+                    seconds(summary.jacobian_evaluation_time_in_seconds);
+    linear_solver_s += seconds(summary.linear_solver_time_in_seconds);
+  }
+  void AddExtrapolation(double seconds) {
+    total_s += seconds;
+    minimizer_s += seconds;
+    evaluation_s += seconds;
+  }
+};
+
+// Runs Ceres; when the recorder ends a run to extrapolate, extrapolates and runs Ceres again from
+// there, with the trust region it had and the iterations left. `summary` is the last run's.
+SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* ceres_options,
+                         ConvergenceRecorder* recorder, Assembly* assembly,
+                         ceres::Solver::Summary* summary) {
+  using Clock = ConvergenceRecorder::Clock;
+  const Clock::time_point first_run = Clock::now();
+  auto since_first_run = [&] { return std::chrono::duration<double>(Clock::now() - first_run).count(); };
+  const ScopedOpenMpThreadCap cap(options.threads);
+  const int max_linear_solves = ceres_options->max_num_iterations;
+  SegmentTimes times;
+  while (true) {
+    recorder->BeginSegment(since_first_run());
+    ceres::Solve(*ceres_options, &assembly->problem(), summary);
+    times.Add(*summary);
+    const Assembly::Values from = recorder->TakeExtrapolationRequest();
+    if (from.empty()) return times;
+    const double start = since_first_run();
+    const double cost = recorder->rows().back().trial_cost;
+    std::optional<StepRecord> row = Extrapolate(from, cost, options.threads, assembly);
+    const double gained_chi2 = row ? 2 * (cost - row->trial_cost) : 0;
+    if (row) {
+      row->time_s = since_first_run();
+      recorder->Record(*row);
+    } else if (!recorder->probing()) {
+      recorder->StopExtrapolating();
+    }
+    times.AddExtrapolation(since_first_run() - start);
+    if (recorder->probing()) {
+      if (gained_chi2 <= options.remaining_chi2) {
+        recorder->ConfirmStop(gained_chi2);
+        return times;
+      }
+      recorder->ContinueAfterProbe();
+    }
+    const int linear_solves = static_cast<int>(std::count_if(
+        recorder->rows().begin(), recorder->rows().end(),
+        [](const StepRecord& r) { return !r.extrapolation; }));
+    if (linear_solves >= max_linear_solves) return times;
+    ceres_options->max_num_iterations = max_linear_solves - linear_solves;
+    ceres_options->initial_trust_region_radius = recorder->radius();
+  }
 }
 
 Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
@@ -692,21 +896,19 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   if (!ceres_options.IsValid(&why_invalid)) return Error{"", 0, "solver options: " + why_invalid};
 
   Graph scratch;
-  if (options.on_accepted_state) {
-    scratch = *graph;
-    ceres_options.update_state_every_iteration = true;
-  }
+  if (options.on_accepted_state) scratch = *graph;
+  ceres_options.update_state_every_iteration = options.on_accepted_state || options.extrapolate;
   ConvergenceRecorder recorder(options, &assembly, &scratch, start);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
-  {
-    const ScopedOpenMpThreadCap cap(options.threads);
-    ceres::Solve(ceres_options, &assembly.problem(), &summary);
-  }
+  const SegmentTimes times = RunSegments(options, &ceres_options, &recorder, &assembly, &summary);
 
   report.convergence = recorder.TakeRows();
-  for (StepRecord& row : report.convergence) row.time_s -= summary.preprocessor_time_in_seconds;
-  report.steps = static_cast<int>(report.convergence.size());
+  for (StepRecord& row : report.convergence) row.time_s -= times.first_preprocessing_s;
+  report.extrapolations = static_cast<int>(std::count_if(
+      report.convergence.begin(), report.convergence.end(),
+      [](const StepRecord& row) { return row.extrapolation; }));
+  report.steps = static_cast<int>(report.convergence.size()) - report.extrapolations;
   // Ceres's num_successful_steps also counts its iteration 0; the accepted rows are the steps.
   report.iterations = static_cast<int>(std::count_if(
       report.convergence.begin(), report.convergence.end(),
@@ -714,6 +916,10 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   report.usable = summary.IsSolutionUsable();
   report.termination_detail = summary.message;
   report.ceres_report = summary.FullReport();
+  if (times.segments > 1) {
+    report.ceres_report = "Ceres's report of the last of " + std::to_string(times.segments) +
+                          " runs (extrapolations restart it):\n" + report.ceres_report;
+  }
   switch (summary.termination_type) {
     case ceres::CONVERGENCE: report.termination = "convergence"; break;
     case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;
@@ -724,14 +930,11 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
       break;
     default: report.termination = "failure"; break;
   }
-  // Ceres reports −1 for a phase that did not run.
-  auto seconds = [](double s) { return std::max(0.0, s); };
-  report.time_total_s = seconds(summary.total_time_in_seconds);
-  report.time_minimizer_s = seconds(summary.minimizer_time_in_seconds);
-  report.time_preprocessor_s = seconds(summary.preprocessor_time_in_seconds);
-  report.time_evaluation_s = seconds(summary.residual_evaluation_time_in_seconds) +
-                             seconds(summary.jacobian_evaluation_time_in_seconds);
-  report.time_linear_solver_s = seconds(summary.linear_solver_time_in_seconds);
+  report.time_total_s = times.total_s;
+  report.time_minimizer_s = times.minimizer_s;
+  report.time_preprocessor_s = times.preprocessor_s;
+  report.time_evaluation_s = times.evaluation_s;
+  report.time_linear_solver_s = times.linear_solver_s;
 
   report.final_cost_by_kind = assembly.Evaluate();
   report.final_cost = TotalCost(report.final_cost_by_kind);

@@ -18,6 +18,7 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "dynslam/verify.h"
+#include "convergence_rows.h"
 #include "reference_util.h"
 
 namespace dynslam {
@@ -140,9 +141,7 @@ TEST_P(HybridReferenceTest, InitialCostIsGtsams) {
 }
 
 TEST_P(HybridReferenceTest, ReachesTheOptimumAndMatchesTightExact) {
-  SolverOptions tight;
-  tight.remaining_chi2 = 0;
-  SolveAndVerify(tight, /*below_gtsam_tight=*/true);
+  SolveAndVerify(TightRule(SolverOptions{}), /*below_gtsam_tight=*/true);
 }
 
 TEST_P(HybridReferenceTest, DefaultsStopWithinTheToleranceOfTightExact) {
@@ -155,6 +154,7 @@ void HybridReferenceTest::SolveAndVerify(const SolverOptions& options, bool belo
   Expected<SolveReport> report = Solve(options, &*graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   ASSERT_TRUE(report->usable) << report->termination_detail;
+  testing::ExpectRowsFollowSpecSection4(*report);
 
   SolveOutputs outputs;
   outputs.input = (Scene() / "graphs" / "hy.g2o").string();

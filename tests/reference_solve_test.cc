@@ -17,6 +17,7 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "dynslam/verify.h"
+#include "convergence_rows.h"
 #include "reference_util.h"
 
 namespace dynslam {
@@ -38,9 +39,7 @@ class ReferenceSolveTest : public ::testing::TestWithParam<ReferenceGraph> {
 };
 
 TEST_P(ReferenceSolveTest, ReachesTheOptimumAndMatchesTightExact) {
-  SolverOptions tight;
-  tight.remaining_chi2 = 0;
-  SolveAndVerify(tight, /*below_gtsam_tight=*/true);
+  SolveAndVerify(TightRule(SolverOptions{}), /*below_gtsam_tight=*/true);
 }
 
 TEST_P(ReferenceSolveTest, DefaultsStopWithinTheToleranceOfTightExact) {
@@ -55,6 +54,7 @@ void ReferenceSolveTest::SolveAndVerify(const SolverOptions& options, bool below
   Expected<SolveReport> report = Solve(options, &*graph);
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   ASSERT_TRUE(report->usable) << report->termination_detail;
+  testing::ExpectRowsFollowSpecSection4(*report);
 
   SolveOutputs outputs;
   outputs.input = reference.graph_path;

@@ -8,6 +8,7 @@
 
 #include "dynslam/graph_io.h"
 #include "dynslam/se3.h"
+#include "convergence_rows.h"
 
 namespace dynslam {
 namespace {
@@ -48,22 +49,7 @@ TEST(SolverTest, ConvergenceRowsFollowSpecSection4) {
   Expected<SolveReport> report = Solve(SolverOptions{}, &graph);
   ASSERT_TRUE(report.ok());
   ASSERT_FALSE(report->convergence.empty());
-  int accepted = 0;
-  double cost = report->initial_cost;
-  for (size_t i = 0; i < report->convergence.size(); ++i) {
-    const StepRecord& row = report->convergence[i];
-    EXPECT_EQ(row.step, static_cast<int>(i) + 1);
-    EXPECT_EQ(row.iteration, accepted + 1);
-    EXPECT_DOUBLE_EQ(row.cost, cost);
-    EXPECT_GT(row.lambda, 0);
-    if (row.accepted) {
-      EXPECT_LT(row.trial_cost, row.cost);
-      cost = row.trial_cost;
-      ++accepted;
-    }
-  }
-  EXPECT_EQ(accepted, report->iterations);
-  EXPECT_EQ(static_cast<int>(report->convergence.size()), report->steps);
+  testing::ExpectRowsFollowSpecSection4(*report);
 }
 
 TEST(SolverTest, RefusesGaugeFreedomUnlessFixFirst) {
@@ -266,11 +252,7 @@ class ObjectCentricChartTest : public ::testing::Test {
     options.world_frame_kinematic_residual = world_kinematic;
     return options;
   }
-  // The tight rule: Ceres's tolerances alone, no remaining-χ² stop.
-  static SolverOptions Tight(SolverOptions options) {
-    options.remaining_chi2 = 0;
-    return options;
-  }
+  static SolverOptions Tight(SolverOptions options) { return TightRule(options); }
   Graph graph_;
 };
 

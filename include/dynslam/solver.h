@@ -79,6 +79,12 @@ struct SolverOptions {
   // and world_frame_kinematic_residual is off (there it took 3–5× fewer steps), else 0: with the
   // world-frame residual the monotonic solver has the shorter tail (docs/CONVERGENCE.md).
   int nonmonotonic_steps = -1;
+  // When two accepted steps in a row decrease the cost by at least 1.5× what their quadratic
+  // model predicted (ρ ≥ 1.5: the model's curvature along the step is too high, and the steps
+  // shrink geometrically), move on along the last step by the factor the model suggests,
+  // 1/(2 − ρ), or by a parabola's minimum through the costs seen, whichever is lower; Ceres then
+  // restarts from there (docs/SOLVER.md "Extrapolation"). Only ever lowers the cost.
+  bool extrapolate = true;
   // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
   // system dense per segment (3× slower linear solves on kitti_0003 oc_b, docs/SOLVER.md).
@@ -126,9 +132,17 @@ struct SolverOptions {
   std::function<void(const struct StepRecord&, const Graph&)> on_accepted_state;
 };
 
+// The tight rule (`--tolerances tight`, the reference tests): Ceres's tolerances alone, no
+// remaining-χ² stop and no extrapolation — the path GTSAM's tight LM also takes.
+inline SolverOptions TightRule(SolverOptions options) {
+  options.remaining_chi2 = 0;
+  options.extrapolate = false;
+  return options;
+}
+
 // One row of convergence.csv (SPEC §4).
 struct StepRecord {
-  int step = 0;       // linear solves from 1
+  int step = 0;       // from 1: linear solves and extrapolations
   int iteration = 0;  // 1 + accepted steps before this one
   double lambda = 0;  // LM damping; for dogleg 1/radius
   double cost = 0;    // before the step
@@ -141,6 +155,8 @@ struct StepRecord {
   double relative_decrease = 0;
   // Not in convergence.csv; the 2-norm of the step in the variables' tangent spaces (rad and m).
   double step_norm = 0;
+  // A move along the previous step (SolverOptions::extrapolate), not a linear solve: lambda 0.
+  bool extrapolation = false;
 };
 
 using CostByKind = std::array<double, kNumEdgeKinds>;
@@ -155,6 +171,7 @@ struct SolveReport {
   CostByKind final_cost_by_kind{};
   int iterations = 0;  // accepted steps
   int steps = 0;       // linear solves Ceres reported
+  int extrapolations = 0;  // SolverOptions::extrapolate; convergence has steps + these rows
   // "convergence", "no_convergence" (max_iterations), "interrupted" (should_stop),
   // "time_limit" (max_time_s) or "failure"; all but "failure" leave a usable solution.
   std::string termination;

@@ -87,14 +87,15 @@ def test_solve_reaches_the_cli_final_cost(cli_solve):
     assert report.final_cost == pytest.approx(cli_solve["final_cost"], rel=1e-12)
 
 
-def test_tight_rule_is_remaining_chi2_zero(tmp_path):
+def test_tight_rule_is_remaining_chi2_zero_without_extrapolation(tmp_path):
     out = tmp_path / "tight"
     subprocess.run([os.environ["DYNSLAM_CLI"], "solve", graph_path("oc_b"), "--tolerances",
                     "tight", "--out", str(out)], check=True, capture_output=True)
     with open(out / "summary.json") as f:
         cli = json.load(f)
-    assert cli["solver"]["remaining_chi2"] == 0
-    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), remaining_chi2=0)
+    assert cli["solver"]["remaining_chi2"] == 0 and cli["solver"]["extrapolate"] is False
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), remaining_chi2=0,
+                           extrapolate=False)
     assert report.steps == cli["steps"] > dynslam.solve(
         dynslam.read_graph(graph_path("oc_b"))).steps
     assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
