@@ -8,9 +8,10 @@
 //                           [--initial-lambda X] [--nonmonotonic-steps N] [--minimizer lm|dogleg]
 //                           [--cost-every N] [--top N]
 //
-// Prints CSV blocks to stdout: "steps" (one row per linear solve or extrapolation), "gap" (per accepted step and
-// role: RMS rotation [rad] and translation/position [m] distance to the final values), "cost"
-// (per sampled accepted step and edge kind), "late" (the top variables still moving).
+// Prints CSV blocks to stdout: "steps" (one row per linear solve or extrapolation), "gap" (per
+// accepted step and role: RMS rotation [rad] and translation/position [m] distance to the final
+// values), "cost" (per sampled accepted step and edge kind), "late" (the top variables still
+// moving).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

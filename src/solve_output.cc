@@ -59,8 +59,9 @@ std::string ConvergenceCsv(const SolveReport& report) {
   std::string text = "step,iteration,lambda,cost,trial_cost,accepted,time_s\n";
   for (const StepRecord& row : report.convergence) {
     text += std::to_string(row.step) + "," + std::to_string(row.iteration) + "," +
-            NumberText(row.lambda) + "," + NumberText(row.cost) + "," + NumberText(row.trial_cost) + "," +
-            (row.accepted ? "1" : "0") + "," + NumberText(row.time_s) + "\n";
+            NumberText(row.lambda) + "," + NumberText(row.cost) + "," +
+            NumberText(row.trial_cost) + "," + (row.accepted ? "1" : "0") + "," +
+            NumberText(row.time_s) + "\n";
   }
   return text;
 }

@@ -601,7 +601,8 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     if (!(decrease > 0) || !(ratio > 0 && ratio < 1)) return kInfinity;
     const double rho = last.relative_decrease;
     if (rho >= 2) return kInfinity;
-    const double along_the_step = rho > 1 ? decrease * (rho - 1) * (rho - 1) / ((2 - rho) * rho) : 0;
+    const double along_the_step =
+        rho > 1 ? decrease * (rho - 1) * (rho - 1) / ((2 - rho) * rho) : 0;
     const double series = std::max(decrease, decrease / rho) * std::max(1.0, ratio / (1 - ratio));
     return 2 * std::max(series, along_the_step);
   }
@@ -803,7 +804,9 @@ SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* c
                          ceres::Solver::Summary* summary) {
   using Clock = ConvergenceRecorder::Clock;
   const Clock::time_point first_run = Clock::now();
-  auto since_first_run = [&] { return std::chrono::duration<double>(Clock::now() - first_run).count(); };
+  auto since_first_run = [&] {
+    return std::chrono::duration<double>(Clock::now() - first_run).count();
+  };
   const ScopedOpenMpThreadCap cap(options.threads);
   const int max_linear_solves = ceres_options->max_num_iterations;
   SegmentTimes times;

@@ -477,7 +477,8 @@ TEST(GraphIoTest, WritesInSpecOrder) {
   EXPECT_EQ(out.str(), expected);
 }
 
-// Every field of every edge survives read → write → read bit for bit (SPEC §1: the shortest exact form).
+// Every field of every edge survives read → write → read bit for bit (SPEC §1: the shortest
+// exact form).
 TEST(GraphIoTest, RoundTripKeepsEveryEdgeDoubleBitExact) {
   const std::string info6 = " 0.1 1e-5 3e-300 0 0 0.7 2.5 0 0 0 0 3.3333333333333335 0 0 0 4 0 0 5 0 6";
   const std::string text = "VERTEX_SE3:QUAT 0 -0 1e-310 3.141592653589793 0.5 0.5 0.5 0.5\n"

@@ -169,9 +169,10 @@ void HybridReferenceTest::SolveAndVerify(const SolverOptions& options, bool belo
   const fs::path gtsam = Scene() / "gtsam" / "hy";
   Expected<JsonValue> tight = ReadJsonFile((gtsam / "tight" / "summary.json").string());
   ASSERT_TRUE(tight.ok());
-  std::printf("%s hy: final %.17g in %d iterations, %.3f s (GTSAM tight %.17g)\n",
-              GetParam().c_str(), report->final_cost, report->iterations, report->time_total_s,
-              NumberAt(*tight, {"final_cost"}));
+  std::printf("%s hy: final %.17g in %d iterations (%d linear solves, %d extrapolations), "
+              "%.3f s (GTSAM tight %.17g)\n",
+              GetParam().c_str(), report->final_cost, report->iterations, report->steps,
+              report->extrapolations, report->time_total_s, NumberAt(*tight, {"final_cost"}));
   if (below_gtsam_tight) {
     EXPECT_LE(report->final_cost, NumberAt(*tight, {"final_cost"})) << "GTSAM's own answer is lower";
   }

@@ -74,10 +74,11 @@ void ReferenceSolveTest::SolveAndVerify(const SolverOptions& options, bool below
   const std::string released = reference.ProfileDir("released") + "/summary.json";
   const double tight = Number(reference.ProfileDir("tight") + "/summary.json", {"final_cost"});
   // GTSAM's released settings are the anchor of the benchmarks: reported, not asserted.
-  std::printf("%s (%s): final %.17g, %d iterations, %.3f s (GTSAM released: %.17g in %g "
-              "iterations, %g s; tight %.17g)\n",
+  std::printf("%s (%s): final %.17g, %d iterations (%d linear solves, %d extrapolations), "
+              "%.3f s (GTSAM released: %.17g in %g iterations, %g s; tight %.17g)\n",
               reference.TestName().c_str(), options.remaining_chi2 > 0 ? "defaults" : "tight",
-              report->final_cost, report->iterations, report->time_total_s,
+              report->final_cost, report->iterations, report->steps, report->extrapolations,
+              report->time_total_s,
               Number(released, {"final_cost"}), Number(released, {"iterations"}),
               Number(released, {"time_s", "total"}), tight);
   if (below_gtsam_tight) EXPECT_LE(report->final_cost, tight) << "GTSAM's own answer is lower";
