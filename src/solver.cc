@@ -93,10 +93,9 @@ class Assembly {
   CostByKind Evaluate();
   // The total cost at the current values (`threads` evaluate it).
   double Cost(int threads);
-  // The values of every block (a state of the solve) and setting them back.
+  // The values of every block: a state of the solve.
   using Values = std::vector<std::array<double, kPoseSize>>;
   const Values& values() const { return values_; }
-  void SetValues(const Values& values) { values_ = values; }  // same size: blocks stay put
   // Sets every block to from ⊞ alpha·(to ⊟ from): along the manifold's tangent for poses, along
   // the straight line for points; blocks that `from` and `to` agree on are left at `to`.
   void MoveAlong(const Values& from, const Values& to, double alpha);
@@ -526,6 +525,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     probe_detail_.clear();
   }
   void ContinueAfterProbe() { probe_detail_.clear(); }
+  // After an extrapolation the linear solves reached SolverOptions::max_iterations.
+  void StopAtStepLimit() {
+    Stop("no_convergence", std::to_string(options_.max_iterations) + " linear solves, the limit");
+  }
   // Extrapolation stops for the rest of the solve (after one that found no lower cost).
   void StopExtrapolating() { extrapolating_ = false; }
   const std::vector<StepRecord>& rows() const { return rows_; }
@@ -627,9 +630,9 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
 };
 
-// SolverOptions::extrapolate: from the state `from` two accepted steps back (cost c_from) to
-// the assembly's current state (cost c), tries α = 2, 4, 8, … ≤ kMaxExtrapolation along the
-// two steps while the cost keeps falling, and leaves the assembly at the lowest cost found.
+// SolverOptions::extrapolate: from the state `from` two accepted steps back to the assembly's
+// current state (whose cost is `cost`), tries α = 2, 4, 8, … ≤ kMaxExtrapolation along the two
+// steps while the cost keeps falling, and leaves the assembly at the lowest cost found.
 // Returns its row (extrapolation, lambda 0), or nothing — the assembly back where it was — when
 // no α > 1 lowered the cost.
 std::optional<StepRecord> Extrapolate(const Assembly::Values& from, double cost, int threads,
@@ -837,7 +840,10 @@ SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* c
     const int linear_solves = static_cast<int>(std::count_if(
         recorder->rows().begin(), recorder->rows().end(),
         [](const StepRecord& r) { return !r.extrapolation; }));
-    if (linear_solves >= max_linear_solves) return times;
+    if (linear_solves >= max_linear_solves) {
+      recorder->StopAtStepLimit();
+      return times;
+    }
     ceres_options->max_num_iterations = max_linear_solves - linear_solves;
     ceres_options->initial_trust_region_radius = recorder->radius();
   }
