@@ -236,8 +236,8 @@ def main():
         "(`benchmarks/sweep.py` writes `out/benchmarks/`; the data behind this page is kept in "
         "`docs/benchmarks/data/`." + (
             " The data was made by these sweeps in order; a `--scaling-only` sweep leaves runs.csv "
-            "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it. On "
-            "the current code the first command alone makes every row."
+            "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it; "
+            "`--scaling` with the first command would remake the scaling rows on its commit too."
             if len(sweeps) > 1 else "") + ")",
         "",
         f"This page generated {datetime.date.today().isoformat()} on {gtsam_ratios.machine()}; "
@@ -286,7 +286,8 @@ def main():
         "Configurations: `LINEAR/LM/tN` is Levenberg–Marquardt with a linear solver and backend "
         "(`schur` = sparse Schur, `snc` = sparse normal Cholesky; SuiteSparse's CHOLMOD or Eigen's "
         "SimplicialLDLT; `iterative_schur` with the Schur–Jacobi preconditioner), LM settings "
-        "and N threads. LM settings: `dynslam` (tolerances 1e-12, 500 steps, first damping auto), `gtsam_like` (first "
+        "and N threads. LM settings: `dynslam` (the defaults: the remaining-χ² rule 0.01 with "
+        "extrapolation, tolerances 1e-12, 500 steps, first damping auto), `gtsam_like` (first "
         "damping 1e-5, function tolerance 1e-5, 100 steps: GTSAM's released profile where Ceres "
         "has the knob), `ceres_defaults` (Ceres's own tolerances, 50 steps). `dogleg` is Powell's "
         "dogleg with sparse Schur and SuiteSparse, `dogleg_snc_eigen` and "
