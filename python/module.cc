@@ -227,6 +227,8 @@ void DefineTypes(py::module_& m) {
       .def_property_readonly("initial_cost", [](const PySolveReport& r) { return r.report.initial_cost; })
       .def_property_readonly("final_cost", [](const PySolveReport& r) { return r.report.final_cost; })
       .def_property_readonly("steps", [](const PySolveReport& r) { return r.report.steps; })
+      .def_property_readonly("extrapolations",
+                             [](const PySolveReport& r) { return r.report.extrapolations; })
       .def_property_readonly("iterations", [](const PySolveReport& r) { return r.report.iterations; })
       .def_property_readonly("termination", [](const PySolveReport& r) { return r.report.termination; })
       .def_property_readonly("usable", [](const PySolveReport& r) { return r.report.usable; })

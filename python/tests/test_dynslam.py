@@ -84,6 +84,7 @@ def test_solve_reaches_the_cli_final_cost(cli_solve):
     report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")))
     assert report.usable and report.termination == cli_solve["termination"]
     assert report.steps == cli_solve["steps"]
+    assert report.extrapolations == cli_solve["extrapolations"]
     assert report.final_cost == pytest.approx(cli_solve["final_cost"], rel=1e-12)
 
 
