@@ -46,6 +46,8 @@ check "missing file" 2 "$dynslam" solve "$work/missing.g2o" --out "$work/x"
 expect_output "missing file named" "missing.g2o"
 check "--tolerances tight with a --remaining-chi2 rule is a usage error" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --tolerances tight --remaining-chi2 0.1
 expect_output "the usage error names both options" "tolerances tight turns --remaining-chi2 off"
+check "--tolerances tight with --extrapolation on is a usage error" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --tolerances tight --extrapolation on
+expect_output "the usage error names both options" "tolerances tight turns --extrapolation off"
 
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_TRACKXYZ 1 0 zero 0\n' >"$work/bad.g2o"
 check "bad number" 2 "$dynslam" solve "$work/bad.g2o" --out "$work/x"
