@@ -81,9 +81,10 @@ struct SolverOptions {
   int nonmonotonic_steps = -1;
   // When two accepted steps in a row decrease the cost by at least 1.5× what their quadratic
   // model predicted (ρ ≥ 1.5: the model's curvature along the step is too high, and the steps
-  // shrink geometrically), move on along the last step by the factor the model suggests,
-  // 1/(2 − ρ), or by a parabola's minimum through the costs seen, whichever is lower; Ceres then
-  // restarts from there (docs/SOLVER.md "Extrapolation"). Only ever lowers the cost.
+  // shrink geometrically), try moving on along those two steps 2, 4, 8, … (at most 64) times as
+  // far while the cost keeps falling, keep the lowest, and restart Ceres there; the same try is
+  // made before the remaining_chi2 rule stops a solve (docs/SOLVER.md "Extrapolation"). Only
+  // ever lowers the cost. TightRule turns it off.
   bool extrapolate = true;
   // Schur solvers: also eliminate object-frame points first. Off by default: each such point is
   // tied to every object pose and motion of its segment, so eliminating it makes the reduced
@@ -151,9 +152,10 @@ struct StepRecord {
   double time_s = 0;  // since the minimiser started (problem set-up excluded)
   // Not in convergence.csv (SPEC §4); for analysis. Ceres's step quality ρ: actual / predicted
   // decrease (with non-monotonic steps, the larger of that and the decrease relative to the
-  // reference cost). 0 for invalid steps.
+  // reference cost). 0 for invalid steps; for an extrapolation, the factor it moved by.
   double relative_decrease = 0;
-  // Not in convergence.csv; the 2-norm of the step in the variables' tangent spaces (rad and m).
+  // Not in convergence.csv; the 2-norm of the step in the variables' tangent spaces (rad and m);
+  // 0 for an extrapolation.
   double step_norm = 0;
   // A move along the previous step (SolverOptions::extrapolate), not a linear solve: lambda 0.
   bool extrapolation = false;
