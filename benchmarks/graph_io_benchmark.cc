@@ -3,7 +3,6 @@
 // GRAPH defaults to the reference parking-garage pose graph (DYNSLAM_REFERENCE_DIR).
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
 #include <sstream>
 #include <string>
 

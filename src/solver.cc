@@ -459,7 +459,8 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   // where options.max_time_s counts from.
   ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch,
                       Clock::time_point start)
-      : options_(options), assembly_(assembly), scratch_(scratch), start_(start) {}
+      : options_(options), assembly_(assembly), scratch_(scratch), start_(start),
+        extrapolating_(options.extrapolate) {}
 
   // Ceres restarts after an extrapolation (Solve); each run is a segment whose clock starts at
   // `offset_s` seconds after the first run started.
@@ -469,7 +470,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     if (s.iteration == 0) {
       accepted_cost_ = s.cost;
       radius_ = s.trust_region_radius;
-      if (options_.extrapolate) {
+      if (extrapolating_) {
         before_ = assembly_->values();
         two_before_.clear();
       }
@@ -485,11 +486,11 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     radius_ = s.trust_region_radius;
     Record(row);
     if (StopRequested()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    if (options_.extrapolate && s.step_is_successful) {
+    if (extrapolating_ && s.step_is_successful) {
       const bool wanted = ExtrapolationWanted() && !two_before_.empty();
       if (wanted) extrapolation_from_ = std::move(two_before_);
-      two_before_ = std::move(before_);
-      before_ = assembly_->values();
+      std::swap(two_before_, before_);
+      before_ = assembly_->values();  // into the buffer two_before_ held: no allocation
       if (wanted) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;  // Solve extrapolates, restarts
     }
     return ceres::SOLVER_CONTINUE;
@@ -501,6 +502,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     row.iteration = accepted_ + 1;
     row.cost = accepted_cost_;
     rows_.push_back(row);
+    extrapolations_ += row.extrapolation;
     if (row.accepted) {
       ++accepted_;
       accepted_cost_ = row.trial_cost;
@@ -530,8 +532,14 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     Stop("no_convergence", std::to_string(options_.max_iterations) + " linear solves, the limit");
   }
   // Extrapolation stops for the rest of the solve (after one that found no lower cost).
-  void StopExtrapolating() { extrapolating_ = false; }
+  void StopExtrapolating() {
+    extrapolating_ = false;
+    before_.clear();
+    two_before_.clear();
+  }
   const std::vector<StepRecord>& rows() const { return rows_; }
+  int extrapolations() const { return extrapolations_; }
+  int linear_solves() const { return static_cast<int>(rows_.size()) - extrapolations_; }
   double radius() const { return radius_; }
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
   // The termination the recorder ended the solve with ("interrupted", "time_limit", or, under
@@ -623,8 +631,9 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   double accepted_cost_ = 0;
   double radius_ = 1;
   int accepted_ = 0;
+  int extrapolations_ = 0;
   double offset_s_ = 0;
-  bool extrapolating_ = true;
+  bool extrapolating_;  // SolverOptions::extrapolate, until an extrapolation finds nothing
   Assembly::Values two_before_, before_;  // the states two accepted steps back and one back
   Assembly::Values extrapolation_from_;  // set when the segment ended to extrapolate
   std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
@@ -837,14 +846,11 @@ SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* c
       }
       recorder->ContinueAfterProbe();
     }
-    const int linear_solves = static_cast<int>(std::count_if(
-        recorder->rows().begin(), recorder->rows().end(),
-        [](const StepRecord& r) { return !r.extrapolation; }));
-    if (linear_solves >= max_linear_solves) {
+    if (recorder->linear_solves() >= max_linear_solves) {
       recorder->StopAtStepLimit();
       return times;
     }
-    ceres_options->max_num_iterations = max_linear_solves - linear_solves;
+    ceres_options->max_num_iterations = max_linear_solves - recorder->linear_solves();
     ceres_options->initial_trust_region_radius = recorder->radius();
   }
 }
@@ -912,12 +918,10 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   ceres::Solver::Summary summary;
   const SegmentTimes times = RunSegments(options, &ceres_options, &recorder, &assembly, &summary);
 
+  report.extrapolations = recorder.extrapolations();
+  report.steps = recorder.linear_solves();
   report.convergence = recorder.TakeRows();
   for (StepRecord& row : report.convergence) row.time_s -= times.first_preprocessing_s;
-  report.extrapolations = static_cast<int>(std::count_if(
-      report.convergence.begin(), report.convergence.end(),
-      [](const StepRecord& row) { return row.extrapolation; }));
-  report.steps = static_cast<int>(report.convergence.size()) - report.extrapolations;
   // Ceres's num_successful_steps also counts its iteration 0; the accepted rows are the steps.
   report.iterations = static_cast<int>(std::count_if(
       report.convergence.begin(), report.convergence.end(),
