@@ -560,9 +560,7 @@ class Writer {
     *out_ += ' ';
     AppendNumber(out_, value);
   }
-  void PoseFields(const Pose& pose) {
-    for (const int i : {4, 5, 6, 0, 1, 2, 3}) Number(pose.data[i]);
-  }
+  void PoseFields(const Pose& pose) { AppendPoseFields(out_, pose, ' '); }
   void Upper3(const Eigen::Matrix3d& m) {
     for (int r = 0; r < 3; ++r) {
       for (int c = r; c < 3; ++c) Number(m(r, c));

@@ -112,10 +112,7 @@ Status WriteGroundTruth(const GroundTruth& ground_truth, const std::string& path
   std::istringstream header_lines(header);
   for (std::string line; std::getline(header_lines, line);) text += "# " + line + "\n";
   auto pose_fields = [&](const Pose& pose) {
-    for (const int i : {4, 5, 6, 0, 1, 2, 3}) {
-      text += ' ';
-      AppendNumber(&text, pose.data[i]);
-    }
+    AppendPoseFields(&text, pose, ' ');
     text += "\n";
   };
   for (const auto& [frame, pose] : ground_truth.cameras) {

@@ -12,11 +12,6 @@
 namespace dynslam {
 namespace {
 
-void AppendPose(std::string& line, const Pose& pose) {
-  const auto& d = pose.data;
-  for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += "," + NumberText(d[i]);  // tx ty tz qx qy qz qw
-}
-
 std::string CamerasCsv(const Graph& graph) {
   std::vector<std::pair<int64_t, Pose>> rows;
   for (const auto& [id, vertex] : graph.vertices) {
@@ -29,7 +24,7 @@ std::string CamerasCsv(const Graph& graph) {
   std::string text = "frame,tx,ty,tz,qx,qy,qz,qw\n";
   for (const auto& [frame, pose] : rows) {
     std::string line = std::to_string(frame);
-    AppendPose(line, pose);
+    AppendPoseFields(&line, pose, ',');
     text += line + "\n";
   }
   return text;
@@ -42,7 +37,7 @@ std::string ObjectFrameCsv(std::vector<ObjectPoseRow> rows) {
   std::string text = "object,frame,tx,ty,tz,qx,qy,qz,qw\n";
   for (const ObjectPoseRow& row : rows) {
     std::string line = std::to_string(row.object) + "," + std::to_string(row.frame);
-    AppendPose(line, row.pose);
+    AppendPoseFields(&line, row.pose, ',');
     text += line + "\n";
   }
   return text;

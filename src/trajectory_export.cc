@@ -76,7 +76,7 @@ std::string FormatTrajectory(const Trajectory& trajectory, TrajectoryFormat form
     std::string line;
     if (format == TrajectoryFormat::kTum) {
       line = NumberText(static_cast<double>(frame) / rate_hz);
-      for (const int i : {4, 5, 6, 0, 1, 2, 3}) line += " " + NumberText(pose.data[i]);
+      AppendPoseFields(&line, pose, ' ');
     } else {
       const Eigen::Matrix3d rotation = pose.rotation().toRotationMatrix();
       const Eigen::Vector3d translation = pose.translation();
