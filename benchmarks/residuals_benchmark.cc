@@ -1,5 +1,7 @@
-// Google Benchmark micro-benchmarks: each residual evaluated alone and with its Jacobians, and
-// the manifold's Plus and PlusJacobian. Run: build/release/benchmarks/residuals_benchmark
+// Google Benchmark micro-benchmarks: each residual the solver builds, evaluated alone and with
+// its Jacobians, and the manifold's Plus and PlusJacobian. The cost functions come from the
+// library's factories (src/edge_costs.h), so this times the code the solver runs, compiled as
+// the library compiles it. Run: build/release/benchmarks/residuals_benchmark
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -7,15 +9,9 @@
 
 #include <ceres/ceres.h>
 
-#include "cost_functions/object_kinematic_error.h"
-#include "cost_functions/object_point_measurement_error.h"
-#include "cost_functions/object_point_motion_error.h"
-#include "cost_functions/point_measurement_error.h"
-#include "cost_functions/point_motion_error.h"
-#include "cost_functions/pose_between_error.h"
-#include "cost_functions/pose_prior_error.h"
 #include "dynslam/se3.h"
 #include "dynslam/se3_manifold.h"
+#include "src/edge_costs.h"
 
 namespace dynslam {
 namespace {
@@ -57,6 +53,63 @@ void Evaluate(benchmark::State& state, std::unique_ptr<ceres::CostFunction> cost
 const Eigen::Vector3d kMeasurement(0.4, -0.3, 9.0);
 const Eigen::Matrix3d kInformation3 = Eigen::Vector3d(4, 5, 0.5).asDiagonal();
 const Matrix6d kInformation6 = Vector6d(100, 100, 100, 10, 10, 10).asDiagonal();
+const SolverOptions kDefaults;
+
+PriorEdge Prior() {
+  PriorEdge e;
+  e.measurement = GenericPose(5);
+  e.information = kInformation6;
+  return e;
+}
+
+BetweenEdge Between() {
+  BetweenEdge e;
+  e.measurement = GenericPose(6);
+  e.information = kInformation6;
+  return e;
+}
+
+PointEdge Point() {
+  PointEdge e;
+  e.measurement = kMeasurement;
+  e.information = kInformation3;
+  return e;
+}
+
+MotionEdge Motion() {
+  MotionEdge e;
+  e.measurement = kMeasurement;
+  e.information = kInformation3;
+  return e;
+}
+
+// Vertex ids 1 (camera), 2 (object pose), 3 (point): the anchored variants compare them.
+ObjectPointEdge ObjectPoint() {
+  ObjectPointEdge e;
+  e.camera = 1;
+  e.object_pose = 2;
+  e.point = 3;
+  e.measurement = kMeasurement;
+  e.information = kInformation3;
+  return e;
+}
+
+// Vertex ids 1 (L_prev), 2 (L_curr), 3 (H), 4 (point).
+ObjectMotionEdge ObjectMotion() {
+  ObjectMotionEdge e;
+  e.pose_prev = 1;
+  e.pose_curr = 2;
+  e.motion = 3;
+  e.point = 4;
+  e.information = kInformation3;
+  return e;
+}
+
+KinematicEdge Kinematic() {
+  KinematicEdge e;
+  e.information = kInformation6;
+  return e;
+}
 
 #define DYNSLAM_RESIDUAL_BENCHMARK(name, create)                                   \
   void BM_##name##_Residual(benchmark::State& state) {                             \
@@ -68,15 +121,21 @@ const Matrix6d kInformation6 = Vector6d(100, 100, 100, 10, 10, 10).asDiagonal();
   BENCHMARK(BM_##name##_Residual);                                                 \
   BENCHMARK(BM_##name##_WithJacobians)
 
-DYNSLAM_RESIDUAL_BENCHMARK(PosePrior, PosePriorError::Create(GenericPose(5), kInformation6));
-DYNSLAM_RESIDUAL_BENCHMARK(PoseBetween, PoseBetweenError::Create(GenericPose(6), kInformation6));
-DYNSLAM_RESIDUAL_BENCHMARK(PointMeasurement,
-                           PointMeasurementError::Create(kMeasurement, kInformation3));
-DYNSLAM_RESIDUAL_BENCHMARK(PointMotion, PointMotionError::Create(kMeasurement, kInformation3));
-DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMeasurement,
-                           ObjectPointMeasurementError::Create(kMeasurement, kInformation3));
-DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMotion, ObjectPointMotionError::Create(kInformation3));
-DYNSLAM_RESIDUAL_BENCHMARK(ObjectKinematic, ObjectKinematicError::Create(kInformation6));
+DYNSLAM_RESIDUAL_BENCHMARK(PosePrior, MakeCost(Prior(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PoseBetween, MakeCost(Between(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PointMeasurement, MakeCost(Point(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PointMotion, MakeCost(Motion(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMeasurement, MakeCost(ObjectPoint(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMotion, MakeCost(ObjectMotion(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(ObjectKinematic, MakeCost(Kinematic(), kDefaults));
+// The world-anchored forms the object-centric solves use by default (SolverOptions::
+// world_anchored_object_points): anchored at a further pose, and at the edge's own pose.
+DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMeasurement,
+                           MakeAnchoredCost(ObjectPoint(), 9).cost);
+DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMotion,
+                           MakeAnchoredCost(ObjectMotion(), kDefaults, 9).cost);
+DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMotionAtOwnPose,
+                           MakeAnchoredCost(ObjectMotion(), kDefaults, 1).cost);
 
 void BM_ManifoldPlus(benchmark::State& state) {
   const SE3Manifold manifold;

@@ -1,66 +1,44 @@
 // The solver's half of the edge table (graph_schema.h): the residual of each edge struct, over
 // the edge's parameter vertices in field order (VertexIds(edge, true)). Adding an edge tag adds
-// one MakeCost overload here.
+// one MakeCost overload here and in edge_costs.cc.
+//
+// Every Ceres autodiff cost function the solver builds is instantiated in edge_costs.cc alone,
+// which CMakeLists.txt compiles with a larger inlining budget (docs/SOLVER.md "Cost of a
+// residual"): nothing else includes the cost functions' Create.
 #ifndef DYNSLAM_SRC_EDGE_COSTS_H_
 #define DYNSLAM_SRC_EDGE_COSTS_H_
 
+#include <vector>
+
 #include <ceres/cost_function.h>
 
-#include "cost_functions/hybrid_point_error.h"
-#include "cost_functions/hybrid_smoothing_error.h"
-#include "cost_functions/object_kinematic_error.h"
-#include "cost_functions/object_point_measurement_error.h"
-#include "cost_functions/object_point_motion_error.h"
-#include "cost_functions/object_point_motion_error_dsc.h"
-#include "cost_functions/point_measurement_error.h"
-#include "cost_functions/point_motion_error.h"
-#include "cost_functions/point_motion_error_dsc.h"
-#include "cost_functions/pose_between_error.h"
-#include "cost_functions/pose_prior_error.h"
 #include "dynslam/graph_schema.h"
 #include "dynslam/solver.h"
 
 namespace dynslam {
 
-inline ceres::CostFunction* MakeCost(const PriorEdge& e, const SolverOptions&) {
-  return PosePriorError::Create(e.measurement, e.information);
-}
-
-inline ceres::CostFunction* MakeCost(const BetweenEdge& e, const SolverOptions&) {
-  return PoseBetweenError::Create(e.measurement, e.information);
-}
-
-inline ceres::CostFunction* MakeCost(const PointEdge& e, const SolverOptions&) {
-  return PointMeasurementError::Create(e.measurement, e.information);
-}
-
+ceres::CostFunction* MakeCost(const PriorEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const BetweenEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const PointEdge& e, const SolverOptions& options);
 // SPEC §7 item 2 replaces the residual.
-inline ceres::CostFunction* MakeCost(const MotionEdge& e, const SolverOptions& options) {
-  return options.dsc_motion_residual ? PointMotionErrorDsc::Create(options.dsc_motion_sigma)
-                                     : PointMotionError::Create(e.measurement, e.information);
-}
-
-inline ceres::CostFunction* MakeCost(const ObjectPointEdge& e, const SolverOptions&) {
-  return ObjectPointMeasurementError::Create(e.measurement, e.information);
-}
-
+ceres::CostFunction* MakeCost(const MotionEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const ObjectPointEdge& e, const SolverOptions& options);
 // SPEC §7 item 6 replaces the residual.
-inline ceres::CostFunction* MakeCost(const ObjectMotionEdge& e, const SolverOptions& options) {
-  return options.dsc_object_motion_residual ? ObjectPointMotionErrorDsc::Create(e.information)
-                                            : ObjectPointMotionError::Create(e.information);
-}
+ceres::CostFunction* MakeCost(const ObjectMotionEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const HybridPointEdge& e, const SolverOptions& options);
+ceres::CostFunction* MakeCost(const HybridSmoothingEdge& e, const SolverOptions& options);
 
-inline ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& options) {
-  return ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual);
-}
-
-inline ceres::CostFunction* MakeCost(const HybridPointEdge& e, const SolverOptions&) {
-  return HybridPointError::Create(e.measurement, e.information);
-}
-
-inline ceres::CostFunction* MakeCost(const HybridSmoothingEdge& e, const SolverOptions&) {
-  return HybridSmoothingError::Create(e.information);
-}
+// SolverOptions::world_anchored_object_points: the residual of an object-frame point edge whose
+// point block holds w = L_a · m_L at the anchor pose `anchor`
+// (cost_functions/world_anchored_object_point.h), and the vertices it is over.
+struct AnchoredCost {
+  ceres::CostFunction* cost;
+  std::vector<VertexId> ids;
+};
+AnchoredCost MakeAnchoredCost(const ObjectPointEdge& e, VertexId anchor);
+AnchoredCost MakeAnchoredCost(const ObjectMotionEdge& e, const SolverOptions& options,
+                              VertexId anchor);
 
 }  // namespace dynslam
 

@@ -13,8 +13,8 @@
 
 #include <ceres/ceres.h>
 
-#include "cost_functions/world_anchored_object_point.h"
 #include "dynslam/formulation.h"
+#include "dynslam/se3.h"
 #include "dynslam/se3_manifold.h"
 #include "src/edge_costs.h"
 #include "src/openmp_thread_cap.h"
@@ -324,14 +324,8 @@ Status Assembly::AddEdge(const Graph& graph, const ObjectPointEdge& e,
   if (anchor == anchor_.end()) {
     return Add(graph, EdgeKind::kObjectPoint, e.line, MakeCost(e, options), VertexIds(e, true));
   }
-  if (anchor->second == e.object_pose) {  // X⁻¹ · L_a · L_a⁻¹ · w = X⁻¹ · w
-    return Add(graph, EdgeKind::kObjectPoint, e.line,
-               PointMeasurementError::Create(e.measurement, e.information), {e.camera, e.point});
-  }
-  return Add(graph, EdgeKind::kObjectPoint, e.line,
-             WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(
-                 ObjectPointMeasurementError(e.measurement, e.information)),
-             {e.camera, e.object_pose, anchor->second, e.point});
+  AnchoredCost anchored = MakeAnchoredCost(e, anchor->second);
+  return Add(graph, EdgeKind::kObjectPoint, e.line, anchored.cost, anchored.ids);
 }
 
 Status Assembly::AddEdge(const Graph& graph, const ObjectMotionEdge& e,
@@ -340,22 +334,8 @@ Status Assembly::AddEdge(const Graph& graph, const ObjectMotionEdge& e,
   if (anchor == anchor_.end()) {
     return Add(graph, EdgeKind::kObjectMotion, e.line, MakeCost(e, options), VertexIds(e, true));
   }
-  auto add = [&](auto residual) {
-    using Anchored = WorldAnchored<decltype(residual), 3, 3>;
-    const std::vector<VertexId> own = VertexIds(e, true);
-    if (anchor->second == e.pose_prev) {
-      return Add(graph, EdgeKind::kObjectMotion, e.line,
-                 Anchored::template AtOwnPose<0>(residual), own);
-    }
-    if (anchor->second == e.pose_curr) {
-      return Add(graph, EdgeKind::kObjectMotion, e.line,
-                 Anchored::template AtOwnPose<1>(residual), own);
-    }
-    return Add(graph, EdgeKind::kObjectMotion, e.line, Anchored::AtFurtherPose(residual),
-               {e.pose_prev, e.pose_curr, e.motion, anchor->second, e.point});
-  };
-  return options.dsc_object_motion_residual ? add(ObjectPointMotionErrorDsc(e.information))
-                                            : add(ObjectPointMotionError(e.information));
+  AnchoredCost anchored = MakeAnchoredCost(e, options, anchor->second);
+  return Add(graph, EdgeKind::kObjectMotion, e.line, anchored.cost, anchored.ids);
 }
 
 void Assembly::WriteBack(Graph* graph) const {
