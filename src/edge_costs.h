@@ -2,9 +2,9 @@
 // the edge's parameter vertices in field order (VertexIds(edge, true)). Adding an edge tag adds
 // one MakeCost overload here and in edge_costs.cc.
 //
-// Every Ceres autodiff cost function the solver builds is instantiated in edge_costs.cc alone,
-// which CMakeLists.txt compiles with a larger inlining budget (docs/SOLVER.md "Cost of a
-// residual"): nothing else includes the cost functions' Create.
+// Every Ceres autodiff cost function the solver builds is instantiated in edge_costs.cc, and
+// nowhere else in the library: CMakeLists.txt compiles that file for the speed of its Jacobians
+// (docs/SOLVER.md "Cost of a residual").
 #ifndef DYNSLAM_SRC_EDGE_COSTS_H_
 #define DYNSLAM_SRC_EDGE_COSTS_H_
 

@@ -324,7 +324,7 @@ Status Assembly::AddEdge(const Graph& graph, const ObjectPointEdge& e,
   if (anchor == anchor_.end()) {
     return Add(graph, EdgeKind::kObjectPoint, e.line, MakeCost(e, options), VertexIds(e, true));
   }
-  AnchoredCost anchored = MakeAnchoredCost(e, anchor->second);
+  const AnchoredCost anchored = MakeAnchoredCost(e, anchor->second);
   return Add(graph, EdgeKind::kObjectPoint, e.line, anchored.cost, anchored.ids);
 }
 
@@ -334,7 +334,7 @@ Status Assembly::AddEdge(const Graph& graph, const ObjectMotionEdge& e,
   if (anchor == anchor_.end()) {
     return Add(graph, EdgeKind::kObjectMotion, e.line, MakeCost(e, options), VertexIds(e, true));
   }
-  AnchoredCost anchored = MakeAnchoredCost(e, options, anchor->second);
+  const AnchoredCost anchored = MakeAnchoredCost(e, options, anchor->second);
   return Add(graph, EdgeKind::kObjectMotion, e.line, anchored.cost, anchored.ids);
 }
 
