@@ -3,11 +3,10 @@
 // library's factories (src/edge_costs.h), so this times the code the solver runs, compiled as
 // the library compiles it. Run: build/release/benchmarks/residuals_benchmark
 #include <benchmark/benchmark.h>
+#include <ceres/ceres.h>
 
 #include <memory>
 #include <vector>
-
-#include <ceres/ceres.h>
 
 #include "dynslam/se3.h"
 #include "dynslam/se3_manifold.h"
@@ -45,7 +44,8 @@ void Evaluate(benchmark::State& state, std::unique_ptr<ceres::CostFunction> cost
     jacobians.push_back(jacobian_storage.back().data());
   }
   for (auto _ : state) {
-    cost->Evaluate(parameters.data(), residuals.data(), with_jacobians ? jacobians.data() : nullptr);
+    cost->Evaluate(parameters.data(), residuals.data(),
+                   with_jacobians ? jacobians.data() : nullptr);
     benchmark::DoNotOptimize(residuals.data());
   }
 }
@@ -55,42 +55,21 @@ const Eigen::Matrix3d kInformation3 = Eigen::Vector3d(4, 5, 0.5).asDiagonal();
 const Matrix6d kInformation6 = Vector6d(100, 100, 100, 10, 10, 10).asDiagonal();
 const SolverOptions kDefaults;
 
-PriorEdge Prior() {
-  PriorEdge e;
-  e.measurement = GenericPose(5);
-  e.information = kInformation6;
-  return e;
-}
-
-BetweenEdge Between() {
-  BetweenEdge e;
-  e.measurement = GenericPose(6);
-  e.information = kInformation6;
-  return e;
-}
-
-PointEdge Point() {
-  PointEdge e;
-  e.measurement = kMeasurement;
-  e.information = kInformation3;
-  return e;
-}
-
-MotionEdge Motion() {
-  MotionEdge e;
-  e.measurement = kMeasurement;
-  e.information = kInformation3;
+// An edge with measurement z and information `information`; vertex ids left at their defaults.
+template <typename Edge, typename Z, typename Information>
+Edge Measured(const Z& z, const Information& information) {
+  Edge e;
+  e.measurement = z;
+  e.information = information;
   return e;
 }
 
 // Vertex ids 1 (camera), 2 (object pose), 3 (point): the anchored variants compare them.
 ObjectPointEdge ObjectPoint() {
-  ObjectPointEdge e;
+  ObjectPointEdge e = Measured<ObjectPointEdge>(kMeasurement, kInformation3);
   e.camera = 1;
   e.object_pose = 2;
   e.point = 3;
-  e.measurement = kMeasurement;
-  e.information = kInformation3;
   return e;
 }
 
@@ -111,27 +90,31 @@ KinematicEdge Kinematic() {
   return e;
 }
 
-#define DYNSLAM_RESIDUAL_BENCHMARK(name, create)                                   \
-  void BM_##name##_Residual(benchmark::State& state) {                             \
-    Evaluate(state, std::unique_ptr<ceres::CostFunction>(create), false);           \
-  }                                                                                \
-  void BM_##name##_WithJacobians(benchmark::State& state) {                        \
-    Evaluate(state, std::unique_ptr<ceres::CostFunction>(create), true);            \
-  }                                                                                \
-  BENCHMARK(BM_##name##_Residual);                                                 \
+#define DYNSLAM_RESIDUAL_BENCHMARK(name, create)                          \
+  void BM_##name##_Residual(benchmark::State& state) {                    \
+    Evaluate(state, std::unique_ptr<ceres::CostFunction>(create), false); \
+  }                                                                       \
+  void BM_##name##_WithJacobians(benchmark::State& state) {               \
+    Evaluate(state, std::unique_ptr<ceres::CostFunction>(create), true);  \
+  }                                                                       \
+  BENCHMARK(BM_##name##_Residual);                                        \
   BENCHMARK(BM_##name##_WithJacobians)
 
-DYNSLAM_RESIDUAL_BENCHMARK(PosePrior, MakeCost(Prior(), kDefaults));
-DYNSLAM_RESIDUAL_BENCHMARK(PoseBetween, MakeCost(Between(), kDefaults));
-DYNSLAM_RESIDUAL_BENCHMARK(PointMeasurement, MakeCost(Point(), kDefaults));
-DYNSLAM_RESIDUAL_BENCHMARK(PointMotion, MakeCost(Motion(), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PosePrior,
+                           MakeCost(Measured<PriorEdge>(GenericPose(5), kInformation6), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PoseBetween,
+                           MakeCost(Measured<BetweenEdge>(GenericPose(6), kInformation6),
+                                    kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PointMeasurement,
+                           MakeCost(Measured<PointEdge>(kMeasurement, kInformation3), kDefaults));
+DYNSLAM_RESIDUAL_BENCHMARK(PointMotion,
+                           MakeCost(Measured<MotionEdge>(kMeasurement, kInformation3), kDefaults));
 DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMeasurement, MakeCost(ObjectPoint(), kDefaults));
 DYNSLAM_RESIDUAL_BENCHMARK(ObjectPointMotion, MakeCost(ObjectMotion(), kDefaults));
 DYNSLAM_RESIDUAL_BENCHMARK(ObjectKinematic, MakeCost(Kinematic(), kDefaults));
 // The world-anchored forms the object-centric solves use by default (SolverOptions::
 // world_anchored_object_points): anchored at a further pose, and at the edge's own pose.
-DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMeasurement,
-                           MakeAnchoredCost(ObjectPoint(), 9).cost);
+DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMeasurement, MakeAnchoredCost(ObjectPoint(), 9).cost);
 DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMotion,
                            MakeAnchoredCost(ObjectMotion(), kDefaults, 9).cost);
 DYNSLAM_RESIDUAL_BENCHMARK(AnchoredObjectPointMotionAtOwnPose,
