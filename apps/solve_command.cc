@@ -38,8 +38,8 @@ void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
     if (n > 0) std::printf(" %s %lld", EdgeKindName(kind), static_cast<long long>(n));
   }
   std::printf("\ncost: %.12g -> %.12g\n", r.initial_cost, r.final_cost);
-  std::printf("iterations: %d accepted of %d steps and %d extrapolations; %s (%s)\n",
-              r.iterations, r.steps, r.extrapolations, r.termination.c_str(),
+  std::printf("iterations: %d accepted of %d steps, %d extrapolations and %d gauge moves; %s (%s)\n",
+              r.iterations, r.steps, r.extrapolations, r.gauge_moves, r.termination.c_str(),
               r.termination_detail.c_str());
   std::printf("time: %.3f s total = %.3f s set-up + %.3f s minimiser (%.3f s evaluation, %.3f s linear solves)\n",
               r.time_total_s, r.time_preprocessor_s, r.time_minimizer_s, r.time_evaluation_s,

@@ -93,12 +93,17 @@ SolverFlags::SolverFlags(ArgParser* parser)
                     "0: off (docs/SOLVER.md)",
                     0, 1e300);
   parser->AddChoice("tolerances", &tolerances_, {"default", "tight"},
-                    "tight: no --remaining-chi2 rule and no --extrapolation, only the three "
+                    "tight: no --remaining-chi2 rule, no --extrapolation and no "
+                    "--gauge-moves, only the three "
                     "tolerances (to the optimum to ~1e-10 relative; the reference tests)");
   parser->AddChoice("extrapolation", &extrapolation_, {"on", "off"},
                     "on: when two steps in a row gain 1.5x what their model predicted, try "
                     "moving on along them 2, 4, 8, ... times as far, and do so before a "
                     "--remaining-chi2 stop (docs/SOLVER.md)");
+  parser->AddChoice("gauge-moves", &gauge_moves_, {"on", "off"},
+                    "on: object-centric graphs, when a good step gains less than the object "
+                    "priors still cost, move each object segment rigidly so that its prior is "
+                    "met (kept only if the cost falls; off by default: docs/CONVERGENCE.md §7)");
   parser->AddDouble("initial-lambda", &initial_lambda_,
                     "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region "
                     "radius); 0: 1e-6 for graphs with points, 1e-10 for pose graphs",
@@ -150,9 +155,13 @@ std::optional<std::string> SolverFlags::Finish(SolverOptions* options) const {
     if (parser_->Given("extrapolation") && extrapolation_ == "on") {
       return std::string("--tolerances tight turns --extrapolation off; give one of them");
     }
+    if (parser_->Given("gauge-moves") && gauge_moves_ == "on") {
+      return std::string("--tolerances tight turns --gauge-moves off; give one of them");
+    }
     *options = TightRule(*options);
   } else {
     options->extrapolate = extrapolation_ == "on";
+    options->snap_segment_gauges = gauge_moves_ == "on";
   }
   options->initial_lambda = initial_lambda_;
   options->nonmonotonic_steps = static_cast<int>(nonmonotonic_steps_);

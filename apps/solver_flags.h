@@ -33,6 +33,7 @@ class SolverFlags {
   double remaining_chi2_;
   std::string tolerances_ = "default";
   std::string extrapolation_ = defaults_.extrapolate ? "on" : "off";
+  std::string gauge_moves_ = defaults_.snap_segment_gauges ? "on" : "off";
   double initial_lambda_;
   int64_t nonmonotonic_steps_;
   bool fix_first_;

@@ -18,6 +18,7 @@
 #include "dynslam/se3_manifold.h"
 #include "src/edge_costs.h"
 #include "src/openmp_thread_cap.h"
+#include "src/segment_gauge.h"
 
 namespace dynslam {
 namespace {
@@ -31,6 +32,11 @@ constexpr double kReleasedMaxLambda = 1e5;
 // steps in a row that starts an extrapolation, and the largest factor it moves by.
 constexpr double kExtrapolationRho = 1.5;
 constexpr double kMaxExtrapolation = 64;
+// SolverOptions::snap_segment_gauges: the step quality ρ an accepted step needs before a gauge
+// move (Ceres's "very successful" step). Moves made earlier, while the steps are still large and
+// the model poor, sent whole KITTI 0018 oc_a on a longer path to a higher stop
+// (docs/CONVERGENCE.md §7).
+constexpr double kGaugeMoveRho = 0.75;
 
 struct NamedEnum {
   const char* name;
@@ -94,8 +100,12 @@ class Assembly {
   // The total cost at the current values (`threads` evaluate it).
   double Cost(int threads);
   // The values of every block: a state of the solve.
-  using Values = std::vector<std::array<double, kPoseSize>>;
+  using Values = SegmentGauges::Values;
   const Values& values() const { return values_; }
+  void Restore(const Values& values) { std::copy(values.begin(), values.end(), values_.begin()); }
+  // The object segments whose gauge SolverOptions::snap_segment_gauges moves, and the move.
+  SegmentGauges FindSegmentGauges(const Graph& graph);
+  void SnapGauges(const SegmentGauges& gauges) { gauges.Snap(&values_); }
   // Sets every block to from ⊞ alpha·(to ⊟ from): along the manifold's tangent for poses, along
   // the straight line for points; blocks that `from` and `to` agree on are left at `to`.
   void MoveAlong(const Values& from, const Values& to, double alpha);
@@ -349,6 +359,17 @@ void Assembly::WriteBack(Graph* graph) const {
   }
 }
 
+SegmentGauges Assembly::FindSegmentGauges(const Graph& graph) {
+  SegmentGauges::Layout layout;
+  layout.index = [&](VertexId id) { return index_.at(id); };
+  layout.movable = [&](VertexId id) {
+    double* block = Block(id);
+    return problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block);
+  };
+  layout.world_anchored = [&](VertexId id) { return anchor_.count(id) > 0; };
+  return SegmentGauges::Find(graph, layout);
+}
+
 std::vector<Assembly::Variable> Assembly::Variables(bool eliminate_object_points) {
   std::vector<Variable> variables;
   for (size_t i = 0; i < values_.size(); ++i) {
@@ -435,12 +456,13 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
 class ConvergenceRecorder : public ceres::IterationCallback {
  public:
   using Clock = std::chrono::steady_clock;
-  // `assembly` and `scratch` are used only when options.on_accepted_state is set; `start` is
-  // where options.max_time_s counts from.
+  // `scratch` is used only when options.on_accepted_state is set; `gauges` are the segments
+  // SolverOptions::snap_segment_gauges moves; `start` is where options.max_time_s counts from.
   ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch,
-                      Clock::time_point start)
-      : options_(options), assembly_(assembly), scratch_(scratch), start_(start),
-        extrapolating_(options.extrapolate) {}
+                      const SegmentGauges* gauges, Clock::time_point start)
+      : options_(options), assembly_(assembly), scratch_(scratch), gauges_(gauges), start_(start),
+        extrapolating_(options.extrapolate),
+        moving_gauges_(options.snap_segment_gauges && !gauges->empty()) {}
 
   // Ceres restarts after an extrapolation (Solve); each run is a segment whose clock starts at
   // `offset_s` seconds after the first run started.
@@ -465,6 +487,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     row.step_norm = s.step_norm;
     radius_ = s.trust_region_radius;
     Record(row);
+    if (GaugeMoveWanted()) {  // Solve moves the gauges, restarts
+      gauge_move_requested_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
     if (StopRequested()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     if (extrapolating_ && s.step_is_successful) {
       const bool wanted = ExtrapolationWanted() && !two_before_.empty();
@@ -483,6 +509,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     row.cost = accepted_cost_;
     rows_.push_back(row);
     extrapolations_ += row.extrapolation;
+    gauge_moves_ += row.gauge_move;
     if (row.accepted) {
       ++accepted_;
       accepted_cost_ = row.trial_cost;
@@ -497,6 +524,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   // The state two accepted steps back when the recorder ended the segment to extrapolate, else
   // empty; taking it clears the request.
   Assembly::Values TakeExtrapolationRequest() { return std::move(extrapolation_from_); }
+  // True when the recorder ended the segment to move the gauges; taking it clears the request.
+  bool TakeGaugeMoveRequest() { return std::exchange(gauge_move_requested_, false); }
+  // Gauge moves stop for the rest of the solve (after one that did not lower the cost).
+  void StopMovingGauges() { moving_gauges_ = false; }
   // True when the request is the check before a remaining-χ² stop: the solve stops unless the
   // extrapolation gains more than the rule allows (ConfirmStop).
   bool probing() const { return !probe_detail_.empty(); }
@@ -519,7 +550,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   }
   const std::vector<StepRecord>& rows() const { return rows_; }
   int extrapolations() const { return extrapolations_; }
-  int linear_solves() const { return static_cast<int>(rows_.size()) - extrapolations_; }
+  int gauge_moves() const { return gauge_moves_; }
+  int linear_solves() const {
+    return static_cast<int>(rows_.size()) - extrapolations_ - gauge_moves_;
+  }
   double radius() const { return radius_; }
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
   // The termination the recorder ended the solve with ("interrupted", "time_limit", or, under
@@ -559,13 +593,24 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     }
     return !stop_reason_.empty();
   }
+  static bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
+  // SolverOptions::snap_segment_gauges: the last row is an accepted linear solve of quality
+  // ρ ≥ kGaugeMoveRho that lowered the cost by less than the segments' priors still hold (all
+  // of which a gauge move removes in oc_a).
+  bool GaugeMoveWanted() const {
+    if (!moving_gauges_) return false;
+    const StepRecord& row = rows_.back();
+    if (!row.accepted || !IsLinearSolve(row)) return false;
+    if (row.relative_decrease < kGaugeMoveRho) return false;
+    return gauges_->PriorCost(assembly_->values()) > row.cost - row.trial_cost;
+  }
   // SolverOptions::extrapolate: the last two rows are accepted linear solves whose decrease the
   // model underestimated by ρ ≥ kExtrapolationRho.
   bool ExtrapolationWanted() const {
     if (!extrapolating_ || rows_.size() < 2) return false;
     for (size_t i = rows_.size() - 2; i < rows_.size(); ++i) {
       const StepRecord& row = rows_[i];
-      if (!row.accepted || row.extrapolation || row.relative_decrease < kExtrapolationRho) {
+      if (!row.accepted || !IsLinearSolve(row) || row.relative_decrease < kExtrapolationRho) {
         return false;
       }
     }
@@ -582,10 +627,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     const StepRecord& last = rows_.back();
     const StepRecord& before = rows_[rows_.size() - 2];
     if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
-    // An extrapolation breaks the series: the step after it also corrects its overshoot, so the
-    // ratio is read only from the second and third steps after one.
+    // An extrapolation or gauge move breaks the series: the step after it also corrects its
+    // overshoot, so the ratio is read only from the second and third steps after one.
     for (size_t i = rows_.size() >= 3 ? rows_.size() - 3 : 0; i < rows_.size(); ++i) {
-      if (rows_[i].extrapolation) return kInfinity;
+      if (!IsLinearSolve(rows_[i])) return kInfinity;
     }
     const double decrease = last.cost - last.trial_cost;
     const double ratio = decrease / (before.cost - before.trial_cost);
@@ -605,6 +650,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   const SolverOptions& options_;
   const Assembly* assembly_;
   Graph* scratch_;
+  const SegmentGauges* gauges_;
   const Clock::time_point start_;
   std::string stop_reason_, stop_detail_;
   std::vector<StepRecord> rows_;
@@ -612,8 +658,11 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   double radius_ = 1;
   int accepted_ = 0;
   int extrapolations_ = 0;
+  int gauge_moves_ = 0;
   double offset_s_ = 0;
   bool extrapolating_;  // SolverOptions::extrapolate, until an extrapolation finds nothing
+  bool moving_gauges_;  // SolverOptions::snap_segment_gauges, until a move finds nothing
+  bool gauge_move_requested_ = false;  // set when the segment ended to move the gauges
   Assembly::Values two_before_, before_;  // the states two accepted steps back and one back
   Assembly::Values extrapolation_from_;  // set when the segment ended to extrapolate
   std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
@@ -643,6 +692,26 @@ std::optional<StepRecord> Extrapolate(const Assembly::Values& from, double cost,
   row.accepted = true;
   row.relative_decrease = best_alpha;  // for analysis: the factor moved by
   row.extrapolation = true;
+  return row;
+}
+
+// SolverOptions::snap_segment_gauges: moves every segment's gauge so that its prior residual is
+// zero and returns the move's row, or nothing — the assembly back where it was — when the total
+// cost (`cost` before) did not fall.
+std::optional<StepRecord> MoveGauges(const SegmentGauges& gauges, double cost, int threads,
+                                     Assembly* assembly) {
+  const Assembly::Values before = assembly->values();
+  assembly->SnapGauges(gauges);
+  const double trial = assembly->Cost(threads);
+  if (!(trial < cost)) {  // NaN too
+    assembly->Restore(before);
+    return std::nullopt;
+  }
+  StepRecord row;
+  row.lambda = 0;
+  row.trial_cost = trial;
+  row.accepted = true;
+  row.gauge_move = true;
   return row;
 }
 
@@ -718,6 +787,7 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
     resolved.nonmonotonic_steps = 0;
     resolved.remaining_chi2 = 0;  // its own rule
     resolved.extrapolate = false;
+    resolved.snap_segment_gauges = false;
   }
   // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
@@ -765,8 +835,8 @@ Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOption
   return out;
 }
 
-// Ceres's times summed over the runs of RunSegments; extrapolations count as minimiser and
-// evaluation time.
+// Ceres's times summed over the runs of RunSegments; the moves between runs (extrapolations,
+// gauge moves) count as minimiser and evaluation time.
 struct SegmentTimes {
   int segments = 0;
   double first_preprocessing_s = 0;
@@ -782,18 +852,19 @@ struct SegmentTimes {
                     seconds(summary.jacobian_evaluation_time_in_seconds);
     linear_solver_s += seconds(summary.linear_solver_time_in_seconds);
   }
-  void AddExtrapolation(double seconds) {
+  void AddMove(double seconds) {
     total_s += seconds;
     minimizer_s += seconds;
     evaluation_s += seconds;
   }
 };
 
-// Runs Ceres; when the recorder ends a run to extrapolate, extrapolates and runs Ceres again from
-// there, with the trust region it had and the iterations left. `summary` is the last run's.
-SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* ceres_options,
-                         ConvergenceRecorder* recorder, Assembly* assembly,
-                         ceres::Solver::Summary* summary) {
+// Runs Ceres; when the recorder ends a run to move the segments' gauges or to extrapolate, does
+// that and runs Ceres again from there, with the trust region it had and the iterations left.
+// `summary` is the last run's.
+SegmentTimes RunSegments(const SolverOptions& options, const SegmentGauges& gauges,
+                         ceres::Solver::Options* ceres_options, ConvergenceRecorder* recorder,
+                         Assembly* assembly, ceres::Solver::Summary* summary) {
   using Clock = ConvergenceRecorder::Clock;
   const Clock::time_point first_run = Clock::now();
   auto since_first_run = [&] {
@@ -806,25 +877,31 @@ SegmentTimes RunSegments(const SolverOptions& options, ceres::Solver::Options* c
     recorder->BeginSegment(since_first_run());
     ceres::Solve(*ceres_options, &assembly->problem(), summary);
     times.Add(*summary);
-    const Assembly::Values from = recorder->TakeExtrapolationRequest();
-    if (from.empty()) return times;
     const double start = since_first_run();
-    const double cost = recorder->rows().back().trial_cost;
-    std::optional<StepRecord> row = Extrapolate(from, cost, options.threads, assembly);
-    const double gained_chi2 = row ? 2 * (cost - row->trial_cost) : 0;
+    const double cost = recorder->rows().empty() ? 0 : recorder->rows().back().trial_cost;
+    const bool gauge_move = recorder->TakeGaugeMoveRequest();
+    const Assembly::Values from =
+        gauge_move ? Assembly::Values() : recorder->TakeExtrapolationRequest();
+    if (!gauge_move && from.empty()) return times;  // Ceres stopped the run itself
+    std::optional<StepRecord> row = gauge_move
+                                        ? MoveGauges(gauges, cost, options.threads, assembly)
+                                        : Extrapolate(from, cost, options.threads, assembly);
     if (row) {
       row->time_s = since_first_run();
       recorder->Record(*row);
-    } else if (!recorder->probing()) {
-      recorder->StopExtrapolating();
     }
-    times.AddExtrapolation(since_first_run() - start);
-    if (recorder->probing()) {
+    times.AddMove(since_first_run() - start);
+    if (gauge_move) {
+      if (!row) recorder->StopMovingGauges();
+    } else if (recorder->probing()) {
+      const double gained_chi2 = row ? 2 * (cost - row->trial_cost) : 0;
       if (gained_chi2 <= options.remaining_chi2) {
         recorder->ConfirmStop(gained_chi2);
         return times;
       }
       recorder->ContinueAfterProbe();
+    } else if (!row) {
+      recorder->StopExtrapolating();
     }
     if (recorder->linear_solves() >= max_linear_solves) {
       recorder->StopAtStepLimit();
@@ -892,13 +969,18 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
 
   Graph scratch;
   if (options.on_accepted_state) scratch = *graph;
-  ceres_options.update_state_every_iteration = options.on_accepted_state || options.extrapolate;
-  ConvergenceRecorder recorder(options, &assembly, &scratch, start);
+  const SegmentGauges gauges =
+      options.snap_segment_gauges ? assembly.FindSegmentGauges(*graph) : SegmentGauges();
+  ceres_options.update_state_every_iteration =
+      options.on_accepted_state || options.extrapolate || !gauges.empty();
+  ConvergenceRecorder recorder(options, &assembly, &scratch, &gauges, start);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
-  const SegmentTimes times = RunSegments(options, &ceres_options, &recorder, &assembly, &summary);
+  const SegmentTimes times =
+      RunSegments(options, gauges, &ceres_options, &recorder, &assembly, &summary);
 
   report.extrapolations = recorder.extrapolations();
+  report.gauge_moves = recorder.gauge_moves();
   report.steps = recorder.linear_solves();
   report.convergence = recorder.TakeRows();
   for (StepRecord& row : report.convergence) row.time_s -= times.first_preprocessing_s;
@@ -911,7 +993,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   report.ceres_report = summary.FullReport();
   if (times.segments > 1) {
     report.ceres_report = "Ceres's report of the last of " + std::to_string(times.segments) +
-                          " runs (extrapolations restart it):\n" + report.ceres_report;
+                          " runs (extrapolations and gauge moves restart it):\n" + report.ceres_report;
   }
   switch (summary.termination_type) {
     case ceres::CONVERGENCE: report.termination = "convergence"; break;
