@@ -229,6 +229,8 @@ void DefineTypes(py::module_& m) {
       .def_property_readonly("steps", [](const PySolveReport& r) { return r.report.steps; })
       .def_property_readonly("extrapolations",
                              [](const PySolveReport& r) { return r.report.extrapolations; })
+      .def_property_readonly("gauge_moves",
+                             [](const PySolveReport& r) { return r.report.gauge_moves; })
       .def_property_readonly("iterations", [](const PySolveReport& r) { return r.report.iterations; })
       .def_property_readonly("termination", [](const PySolveReport& r) { return r.report.termination; })
       .def_property_readonly("usable", [](const PySolveReport& r) { return r.report.usable; })

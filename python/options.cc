@@ -95,6 +95,7 @@ SolverOptions ToSolverOptions(const py::kwargs& kwargs) {
       Plain("parameter_tolerance", &O::parameter_tolerance),
       Plain("remaining_chi2", &O::remaining_chi2),
       Plain("extrapolate", &O::extrapolate),
+      Plain("snap_segment_gauges", &O::snap_segment_gauges),
       Plain("initial_lambda", &O::initial_lambda),
       Plain("nonmonotonic_steps", &O::nonmonotonic_steps),
       Plain("eliminate_object_points", &O::eliminate_object_points),

@@ -169,3 +169,16 @@ def test_ctrl_c_stops_the_solve_and_keeps_its_report(tmp_path):
     words = result.stdout.split()
     assert words[:2] == ["interrupted", "interrupted"], result.stdout
     assert 0 < int(words[2]) < 11 and words[3:] == ["True", "True"], result.stdout
+
+
+def test_gauge_moves_option_matches_the_cli(tmp_path):
+    out = tmp_path / "moves"
+    subprocess.run([os.environ["DYNSLAM_CLI"], "solve", graph_path("oc_b"), "--gauge-moves", "on",
+                    "--out", str(out)], check=True, capture_output=True)
+    with open(out / "summary.json") as f:
+        cli = json.load(f)
+    assert cli["solver"]["snap_segment_gauges"] is True
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), snap_segment_gauges=True)
+    assert report.gauge_moves == cli["gauge_moves"]
+    assert report.steps == cli["steps"]
+    assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
