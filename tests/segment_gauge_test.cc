@@ -80,9 +80,14 @@ TEST(SegmentGaugeTest, FindsOneSegmentPerObjectPriorInObjectCentricGraphs) {
   }
 }
 
-TEST(SegmentGaugeTest, NoSegmentsWithoutObjectPosesOrWhenAVertexIsHeld) {
-  const Graph wc = Build(Formulation::kWorldCentric);
-  EXPECT_TRUE(SegmentGauges::Find(wc, Blocks(wc).Layout()).empty());
+// wc and hy have no object poses (hy's object points hang off hybrid motions and a constant
+// embedded frame), so nothing to move; nor is a segment with a vertex held constant moved.
+TEST(SegmentGaugeTest, NoSegmentsInWcOrHyOrWhenAVertexIsHeld) {
+  for (const Formulation formulation : {Formulation::kWorldCentric, Formulation::kHybrid}) {
+    const Graph graph = Build(formulation);
+    EXPECT_TRUE(SegmentGauges::Find(graph, Blocks(graph).Layout()).empty())
+        << FormulationName(formulation);
+  }
   const Graph oc_a = Build(Formulation::kObjectCentricA);
   const Blocks blocks(oc_a);
   SegmentGauges::Layout held = blocks.Layout();
