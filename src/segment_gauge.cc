@@ -1,5 +1,6 @@
 #include "src/segment_gauge.h"
 
+#include <map>
 #include <numeric>
 #include <type_traits>
 #include <unordered_map>
@@ -55,15 +56,16 @@ SegmentGauges SegmentGauges::Find(const Graph& graph, const Layout& layout) {
       if (JoinsSegment(kind)) {
         for (const size_t m : members) components.Join(m, members.front());
       } else if constexpr (std::is_same_v<std::decay_t<decltype(e)>, PriorEdge>) {
-        auto [it, inserted] = prior_of.emplace(members.front(), &e);
-        if (!inserted) spoiled.push_back(members.front());  // two priors on one pose
+        if (!prior_of.emplace(members.front(), &e).second) {
+          spoiled.push_back(members.front());  // two priors on one pose
+        }
       } else {
         spoiled.insert(spoiled.end(), members.begin(), members.end());
       }
     }
   });
 
-  std::unordered_map<size_t, Candidate> candidates;  // by root
+  std::map<size_t, Candidate> candidates;  // by root: segments in a fixed order
   for (const auto& [id, vertex] : graph.vertices) {
     if (!InSegment(vertex.label.role)) continue;
     const size_t index = layout.index(id);
