@@ -86,7 +86,8 @@ SegmentGauges SegmentGauges::Find(const Graph& graph, const Layout& layout) {
   for (auto& [root, c] : candidates) {
     if (!c.usable || c.priors.size() != 1) continue;
     const PriorEdge& prior = *c.priors.front();
-    gauges.segments_.push_back({layout.index(prior.pose), prior.measurement, prior.information,
+    gauges.segments_.push_back({layout.index(prior.pose), prior.measurement,
+                                PosePriorError(prior.measurement, prior.information),
                                 std::move(c.poses), std::move(c.points)});
   }
   return gauges;
@@ -95,10 +96,9 @@ SegmentGauges SegmentGauges::Find(const Graph& graph, const Layout& layout) {
 double SegmentGauges::PriorCost(const Values& values) const {
   double cost = 0;
   for (const Segment& s : segments_) {
-    Pose pose;
-    pose.data = values[s.prior_pose];
-    const Vector6d r = Log(Compose(Inverse(s.measurement), pose));  // SPEC §1.2 prior
-    cost += 0.5 * r.dot(s.information * r);
+    Vector6d r;
+    s.error(values[s.prior_pose].data(), r.data());
+    cost += 0.5 * r.squaredNorm();
   }
   return cost;
 }

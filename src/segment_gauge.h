@@ -15,6 +15,7 @@
 #include <functional>
 #include <vector>
 
+#include "cost_functions/pose_prior_error.h"
 #include "dynslam/graph.h"
 #include "dynslam/pose.h"
 
@@ -40,7 +41,8 @@ class SegmentGauges {
 
   bool empty() const { return segments_.empty(); }
   size_t size() const { return segments_.size(); }
-  // Σ ½·rᵀ·Ω·r of the segments' priors at `values` (no robust kernel): what the move removes.
+  // Σ ½·‖r‖² of the segments' prior residuals at `values` (no robust kernel): what the move
+  // removes.
   double PriorCost(const Values& values) const;
   // Moves every segment so that its prior residual is zero.
   void Snap(Values* values) const;
@@ -49,7 +51,7 @@ class SegmentGauges {
   struct Segment {
     size_t prior_pose;      // block of the pose the prior is on
     Pose measurement;       // the prior's Z
-    Matrix6d information;   // the prior's Ω, [ω; ρ]
+    PosePriorError error;   // the prior's whitened residual, as the solver evaluates it
     std::vector<size_t> poses;   // L → L·G
     std::vector<size_t> points;  // m → G⁻¹·m (object-frame points not world-anchored)
   };
