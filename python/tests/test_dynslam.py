@@ -179,6 +179,8 @@ def test_gauge_moves_option_matches_the_cli(tmp_path):
         cli = json.load(f)
     assert cli["solver"]["snap_segment_gauges"] is True
     report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), snap_segment_gauges=True)
+    # This graph makes no move, so the counts alone would not show the option reached the solver.
+    assert report.summary()["solver"]["snap_segment_gauges"] is True
     assert report.gauge_moves == cli["gauge_moves"]
     assert report.steps == cli["steps"]
     assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
