@@ -1,4 +1,4 @@
-// dynslam build FRONTEND.g2o --formulation F --out FILE [--gt GT] [options]
+// dynslam build FRONTEND.g2o --formulation F --out FILE [--gt GT] [--start WC_SOLUTION.g2o] [options]
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -28,6 +28,12 @@ int RunBuild(int argc, char** argv) {
                    "ground truth (SPEC §2): initialises the first object pose (hy: the embedded "
                    "frame) of each segment",
                    "GT");
+  std::string start_path;
+  parser.AddString("start", &start_path,
+                   "oc_a, oc_b, oc_c: take the initial values from this solved wc graph of the same "
+                   "front end (`dynslam solve`'s solution.g2o), the edges from the front end "
+                   "(SPEC §3.5 start wc)",
+                   "WC_SOLUTION.g2o");
   BuildFlags build_flags(&parser);
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
@@ -70,6 +76,20 @@ int RunBuild(int argc, char** argv) {
   if (!built.ok()) {
     std::cerr << "error: " << built.error().ToString() << "\n";
     return kExitBadInput;
+  }
+  if (!start_path.empty()) {
+    Expected<Graph> world_centric = ReadGraph(start_path);
+    if (!world_centric.ok()) {
+      std::cerr << "error: " << world_centric.error().ToString() << "\n";
+      return kExitBadInput;
+    }
+    Status started = StartFromWorldCentric(*front_end, *world_centric, options,
+                                           gt ? &*gt : nullptr, &*built);
+    if (!started.ok()) {
+      std::cerr << "error: --start " << start_path << ": " << started.error().ToString() << "\n";
+      return kExitBadInput;
+    }
+    report.lines.push_back("initial values from " + start_path + " (--start, SPEC §3.5)");
   }
   if (Status status = WriteGraph(*built, out_path); !status.ok()) {
     std::cerr << "error: " << status.error().ToString() << "\n";

@@ -280,7 +280,9 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
                                     const SolverOptions& solver_options, const CompatFlags& compat,
                                     const ExportFlags& export_flags,
                                     const GroundTruth* gt, const fs::path& out_dir,
-                                    const std::string& front_end_name, int* exit_code) {
+                                    const std::string& front_end_name,
+                                    const Graph* world_centric_start, Graph* solved_out,
+                                    int* exit_code) {
   const char* name = FormulationName(formulation);
   auto fail = [exit_code](const Error& error, int code = kExitFailed) {
     std::cerr << "error: " << error.ToString() << "\n";
@@ -291,6 +293,16 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   Expected<Graph> graph =
       BuildFormulation(front_end, formulation, build_options, gt, &build_report, front_end_name);
   if (!graph.ok()) return fail(graph.error(), kExitBadInput);
+  const bool object_centric = formulation != Formulation::kWorldCentric &&
+                              formulation != Formulation::kHybrid;
+  if (world_centric_start != nullptr && object_centric) {
+    if (Status s = StartFromWorldCentric(front_end, *world_centric_start, build_options, gt,
+                                         &*graph);
+        !s.ok()) {
+      return fail(s.error());
+    }
+    build_report.lines.push_back("initial values from wc's solution (--start wc, SPEC §3.5)");
+  }
   const fs::path dir = out_dir / name;
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -339,6 +351,7 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
     return fail(Error{"", 0, std::string(name) + ": the solve failed: " +
                                  row.report.termination_detail});
   }
+  if (solved_out != nullptr) *solved_out = std::move(*graph);
   return row;
 }
 
@@ -367,6 +380,11 @@ int RunCompare(int argc, char** argv) {
   parser.AddString("formulations", &formulation_list,
                    "comma-separated subset of " + FormulationNames(","), "LIST");
   parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png and DIR/trajectory.png");
+  std::string start = "frontend";
+  parser.AddChoice("start", &start, {"frontend", "wc"},
+                   "where oc_a, oc_b and oc_c start: the front end's estimates, or wc's solution "
+                   "(SPEC §3.5; wc must come first in --formulations; their steps and times then "
+                   "add to wc's)");
   BuildFlags build_flags(&parser);
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
@@ -393,6 +411,11 @@ int RunCompare(int argc, char** argv) {
       return kExitBadInput;
     }
     formulations.push_back(f);
+  }
+  const bool start_wc = start == "wc";
+  if (start_wc && (formulations.empty() || formulations[0] != Formulation::kWorldCentric)) {
+    std::cerr << "error: --start wc: wc must come first in --formulations\n";
+    return kExitBadInput;
   }
   BuildOptions build_options;
   if (std::optional<std::string> problem = build_flags.Finish(&build_options)) {
@@ -433,12 +456,14 @@ int RunCompare(int argc, char** argv) {
   }
   std::vector<Row> rows;
   const std::string name = fs::path(front_end_path).filename().string();
+  Graph world_centric;  // wc's solution, with --start wc
   for (const Formulation formulation : formulations) {
     int exit_code = kExitOk;
-    std::optional<Row> row =
-        SolveFormulation(*front_end, formulation, build_options, solver_options, compat,
-                         export_flags, gt ? &*gt : nullptr, fs::path(out_dir), name,
-                         &exit_code);
+    const bool wc = formulation == Formulation::kWorldCentric;
+    std::optional<Row> row = SolveFormulation(
+        *front_end, formulation, build_options, solver_options, compat, export_flags,
+        gt ? &*gt : nullptr, fs::path(out_dir), name, start_wc && !wc ? &world_centric : nullptr,
+        start_wc && wc ? &world_centric : nullptr, &exit_code);
     if (!row) return exit_code;
     rows.push_back(std::move(*row));
     if (StopSignal() != 0) {
@@ -452,6 +477,10 @@ int RunCompare(int argc, char** argv) {
     Tables(rows, &markdown, &csv);
   } else {
     TablesWithoutGroundTruth(rows, &markdown, &csv);
+  }
+  if (start_wc) {
+    markdown = "(--start wc: oc_a, oc_b and oc_c started from wc's solution, so their steps and "
+               "times come after wc's; hy from the front end)\n\n" + markdown;
   }
   if (compat.any()) {
     markdown = "(--compat " + compat.Describe() +

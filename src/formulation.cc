@@ -950,4 +950,41 @@ Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation
   return builder.Build(formulation);
 }
 
+Status StartFromWorldCentric(const Graph& front_end, const Graph& world_centric,
+                             const BuildOptions& options, const GroundTruth* ground_truth,
+                             Graph* built) {
+  const std::string name = "start wc";
+  std::optional<Formulation> formulation = FormulationOfGraph(*built);
+  if (formulation != Formulation::kObjectCentricA && formulation != Formulation::kObjectCentricB &&
+      formulation != Formulation::kObjectCentricC) {
+    return Error{name, 0, "applies to oc_a, oc_b and oc_c (the graph is " +
+                              FormulationLabelOf(*built) + ")"};
+  }
+  if (FormulationOfGraph(world_centric) != Formulation::kWorldCentric) {
+    return Error{name, 0, "the start must be a wc graph (it is " +
+                              FormulationLabelOf(world_centric) + ")"};
+  }
+  Graph estimates = front_end;
+  for (auto& [id, vertex] : estimates.vertices) {
+    const Vertex* solved = world_centric.Find(id);
+    if (solved == nullptr) continue;  // dropped by the build (SPEC §3.1)
+    if (solved->label.role != vertex.label.role) {
+      return Error{name, 0, "vertex " + std::to_string(id) +
+                                " has another role in the wc graph: not built from this front end"};
+    }
+    vertex.value = solved->value;
+  }
+  Expected<Graph> start = BuildFormulation(estimates, *formulation, options, ground_truth, nullptr);
+  if (!start.ok()) return start.error();
+  for (auto& [id, vertex] : built->vertices) {
+    const Vertex* started = start->Find(id);
+    if (started == nullptr || started->label.role != vertex.label.role) {
+      return Error{name, 0, "vertex " + std::to_string(id) +
+                                " is not in the rebuilt graph: not built from this front end"};
+    }
+    vertex.value = started->value;
+  }
+  return Status::Ok();
+}
+
 }  // namespace dynslam

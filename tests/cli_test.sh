@@ -119,6 +119,25 @@ expect_output "verify names the missing vertex" "has no vertex"
 check "a solve stopped by the iteration limit is still usable" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/limit" --max-iterations 2
 check "build" 0 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_b --gt "$data/synthetic/gt.txt" --out "$work/oc_b.g2o"
 expect_output "build report" "kept: object 1 frames 0..29"
+check "build --start from a solved wc graph (SPEC §3.5)" 0 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_b --gt "$data/synthetic/gt.txt" --start "$work/wc/solution.g2o" --out "$work/oc_b_start.g2o"
+expect_output "build --start reported" "initial values from .*solution.g2o"
+if cmp -s <(grep '^EDGE' "$work/oc_b.g2o") <(grep '^EDGE' "$work/oc_b_start.g2o") &&
+   ! cmp -s <(grep '^VERTEX' "$work/oc_b.g2o") <(grep '^VERTEX' "$work/oc_b_start.g2o"); then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: build --start changed the edges or kept the front end's values"
+fi
+check "build --start from an oc graph is bad input" 2 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_b --start "$work/oc_b.g2o" --out "$work/x.g2o"
+expect_output "build --start names what it needs" "the start must be a wc graph (it is oc_b)"
+check "compare --start wc without wc first is a usage error" 2 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/x" --formulations oc_b --start wc
+expect_output "compare --start wc says why" "wc must come first"
+check "compare --start wc" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots
+if grep -q "^(--start wc" "$work/compare_start/tables.md" &&
+   grep -q "initial values from wc's solution" "$work/compare_start/oc_b/build.txt"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: compare --start wc: tables.md or oc_b/build.txt does not say so"
+fi
 check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
 check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 9
 check "bad --compat dynosam item" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat dynosam:5

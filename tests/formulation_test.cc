@@ -628,6 +628,100 @@ TEST_F(ObjectInitTest, RulesDifferOnlyAfterASegmentsFirstFrame) {
   EXPECT_GT(later_frames_that_differ, 0) << "the rules are not all the same rule";
 }
 
+// The edge lines of a graph as written (SPEC §1): what defines its cost function.
+std::vector<std::string> EdgeLines(const Graph& graph) {
+  std::ostringstream text;
+  WriteGraph(graph, text);
+  std::istringstream in(text.str());
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("EDGE_", 0) == 0) lines.push_back(line);
+  }
+  return lines;
+}
+
+// SPEC §3.5 `start wc` with a stand-in for a solved wc graph (every camera and motion moved by
+// a small pose, every point by a small offset), so that every value is known here.
+TEST_F(ObjectInitTest, StartFromWorldCentricTakesItsValuesAndKeepsTheEdges) {
+  const Graph built = Build(ObjectInit::kMotion);
+  Expected<Graph> wc =
+      BuildFormulation(front_end_, Formulation::kWorldCentric, BuildOptions(), &gt_, nullptr);
+  ASSERT_TRUE(wc.ok()) << wc.error().ToString();
+  const Pose nudge = Exp((Vector6d() << 0.01, -0.02, 0.03, 0.1, 0.2, -0.3).finished());
+  for (auto& [id, v] : wc->vertices) {
+    if (v.type == VertexType::kPose) v.set_pose(Compose(nudge, v.pose()));
+    if (v.type == VertexType::kPoint) v.point() += Eigen::Vector3d(0.5, -0.25, 0.125);
+  }
+  Graph started = built;
+  ASSERT_TRUE(StartFromWorldCentric(front_end_, *wc, BuildOptions(), &gt_, &started).ok());
+
+  EXPECT_EQ(EdgeLines(started), EdgeLines(built)) << "the cost function changed";
+  std::map<int64_t, VertexId> camera_of_frame;
+  std::map<std::pair<int64_t, int64_t>, VertexId> motion_at;
+  for (const auto& [id, v] : started.vertices) {
+    if (v.label.role == Role::kCamera) camera_of_frame[v.label.frame] = id;
+    if (v.label.role == Role::kMotion) motion_at[{v.label.object, v.label.frame}] = id;
+    if (v.label.role == Role::kCamera || v.label.role == Role::kStaticPoint ||
+        v.label.role == Role::kMotion) {
+      EXPECT_EQ(v.value, wc->Find(id)->value) << "vertex " << id;
+    }
+  }
+  // Object poses: the first by SPEC §3.3's first-frame rule from the wc camera, the others
+  // chained by the wc motions (`object_init motion`).
+  int first = 0, chained = 0;
+  for (const auto& [id, v] : started.vertices) {
+    if (v.label.role != Role::kObjectPose) continue;
+    const int64_t j = v.label.object, k = v.label.frame;
+    const auto motion = motion_at.find({j, k});
+    const Vertex* previous = started.Find(id - 1);
+    const bool chain = motion != motion_at.end() && previous != nullptr &&
+                       previous->label.role == Role::kObjectPose && previous->label.object == j &&
+                       previous->label.frame == k - 1;
+    const Pose expected =
+        chain ? Compose(wc->Find(motion->second)->pose(), previous->pose())
+              : Compose(Compose(wc->Find(camera_of_frame.at(k))->pose(), Inverse(*gt_.Camera(k))),
+                        *gt_.Object(j, k));
+    const auto [rotation, translation] = Difference(expected, v.pose());
+    EXPECT_LT(rotation, 1e-12) << "object " << j << " frame " << k;
+    EXPECT_LT(translation, 1e-9) << "object " << j << " frame " << k;
+    ++(chain ? chained : first);
+  }
+  EXPECT_EQ(first, 5);  // one per kept segment
+  EXPECT_EQ(chained, 77);
+  // Object-frame points: the tracklet's first wc point seen from its object pose at that frame.
+  std::map<int64_t, const Vertex*> first_point;  // tracklet → its earliest wc dynamic point
+  for (const auto& [id, v] : wc->vertices) {
+    if (v.label.role != Role::kDynamicPoint) continue;
+    const Vertex*& earliest = first_point[v.label.tracklet];
+    if (earliest == nullptr || v.label.frame < earliest->label.frame) earliest = &v;
+  }
+  int points = 0;
+  for (const ObjectPointEdge& e : started.Edges<ObjectPointEdge>()) {
+    const Vertex& m = *started.Find(e.point);
+    const Vertex& l = *started.Find(e.object_pose);
+    const Vertex& x = *first_point.at(m.label.tracklet);
+    if (l.label.frame != x.label.frame) continue;
+    EXPECT_LT((Transform(l.pose(), m.point()) - x.point()).norm(), 1e-9) << "point " << e.point;
+    ++points;
+  }
+  EXPECT_GT(points, 0);
+}
+
+TEST_F(ObjectInitTest, StartFromWorldCentricRefusesWhatItCannotStart) {
+  Expected<Graph> wc =
+      BuildFormulation(front_end_, Formulation::kWorldCentric, BuildOptions(), &gt_, nullptr);
+  Expected<Graph> hy =
+      BuildFormulation(front_end_, Formulation::kHybrid, BuildOptions(), &gt_, nullptr);
+  ASSERT_TRUE(wc.ok() && hy.ok());
+  Graph oc = Build(ObjectInit::kMotion);
+  const Status not_wc = StartFromWorldCentric(front_end_, oc, BuildOptions(), &gt_, &oc);
+  ASSERT_FALSE(not_wc.ok());
+  EXPECT_NE(not_wc.error().message.find("must be a wc graph"), std::string::npos);
+  const Status hybrid = StartFromWorldCentric(front_end_, *wc, BuildOptions(), &gt_, &*hy);
+  ASSERT_FALSE(hybrid.ok());
+  EXPECT_NE(hybrid.error().message.find("applies to oc_a, oc_b and oc_c"), std::string::npos);
+}
+
 TEST(ObjectInitNameTest, NamesRoundTrip) {
   for (const ObjectInit rule : kAllObjectInits) {
     ObjectInit parsed = ObjectInit::kCentroid == rule ? ObjectInit::kMotion : ObjectInit::kCentroid;
