@@ -253,7 +253,7 @@ void DefineFunctions(py::module_& m) {
   m.def("read_ground_truth", [](const std::string& path) { return Unwrap(ReadGroundTruth(path)); },
         py::arg("path"));
   m.def("build", [](const Graph& front_end, const std::string& formulation, const py::object& gt,
-                    const py::kwargs& options) {
+                    const py::object& start, const py::kwargs& options) {
     Formulation f;
     if (!ParseFormulation(formulation, &f)) {
       throw py::value_error("unknown formulation '" + formulation + "' (" +
@@ -262,10 +262,20 @@ void DefineFunctions(py::module_& m) {
     const std::optional<GroundTruth> truth =
         gt.is_none() ? std::nullopt : std::optional<GroundTruth>(AsGroundTruth(gt));
     BuildReport report;
-    return Unwrap(BuildFormulation(front_end, f, ToBuildOptions(options),
-                                   truth ? &*truth : nullptr, &report));
+    const BuildOptions build_options = ToBuildOptions(options);
+    Graph built = Unwrap(BuildFormulation(front_end, f, build_options,
+                                          truth ? &*truth : nullptr, &report));
+    if (!start.is_none()) {
+      const Status s = StartFromWorldCentric(front_end, start.cast<const Graph&>(), build_options,
+                                             truth ? &*truth : nullptr, &built);
+      if (!s.ok()) throw ErrorException{s.error()};
+    }
+    return built;
   }, py::arg("frontend"), py::arg("formulation"), py::arg("gt") = py::none(),
-     "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path");
+     py::arg("start") = py::none(),
+     "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path; start: a "
+     "solved wc Graph of the same front end to take oc_a/oc_b/oc_c's initial values from "
+     "(SPEC §3.5 start wc)");
   m.def("solve", [](const Graph& graph, const py::kwargs& options) {
     return SolveReleasingTheGil(ToSolverOptions(options), graph);
   }, py::arg("graph"), "solve a copy of the graph; options are SolverOptions's fields");

@@ -15,13 +15,22 @@ __all__ = ["Error", "FORMULATIONS", "Graph", "GroundTruth", "SolveReport", "buil
            "metrics", "read_graph", "read_ground_truth", "simulate", "solve", "write_graph"]
 
 
-def compare(frontend, gt=None, formulations=FORMULATIONS, build_options=None, **solver_options):
+def compare(frontend, gt=None, formulations=FORMULATIONS, build_options=None, start="frontend",
+            **solver_options):
     """Every formulation built from one front end (identical data) and solved the same way, as
     `dynslam compare` does. Returns {formulation: {"report": SolveReport, "metrics": dict or
-    None}}; metrics need ground truth (a GroundTruth or a path)."""
+    None}}; metrics need ground truth (a GroundTruth or a path). start="wc": oc_a, oc_b and oc_c
+    start from wc's solution (SPEC §3.5; wc must come first in `formulations`)."""
+    if start not in ("frontend", "wc"):
+        raise ValueError("start must be 'frontend' or 'wc', not %r" % (start,))
+    if start == "wc" and (not formulations or formulations[0] != "wc"):
+        raise ValueError("start='wc': wc must come first in formulations")
     results = {}
     for formulation in formulations:
-        graph = build(frontend, formulation, gt, **(build_options or {}))
+        started = start == "wc" and formulation.startswith("oc_")
+        graph = build(frontend, formulation, gt,
+                      start=results["wc"]["report"].graph if started else None,
+                      **(build_options or {}))
         report = solve(graph, **solver_options)
         results[formulation] = {
             "report": report,

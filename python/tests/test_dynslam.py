@@ -184,3 +184,27 @@ def test_gauge_moves_option_matches_the_cli(tmp_path):
     assert report.gauge_moves == cli["gauge_moves"]
     assert report.steps == cli["steps"]
     assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
+
+
+def test_start_from_wc_matches_the_cli(tmp_path):
+    """build(..., start=wc solution) writes the file `dynslam build --start` writes."""
+    wc = dynslam.solve(dynslam.read_graph(graph_path("wc"))).graph
+    dynslam.write_graph(wc, str(tmp_path / "wc.g2o"))
+    frontend = os.path.join(SCENE, "frontend.g2o")
+    subprocess.run([os.environ["DYNSLAM_CLI"], "build", frontend, "--formulation", "oc_a",
+                    "--gt", GT, "--start", str(tmp_path / "wc.g2o"), "--out",
+                    str(tmp_path / "cli.g2o")], check=True, capture_output=True)
+    front = dynslam.read_graph(frontend)
+    started = dynslam.build(front, "oc_a", GT, start=wc)
+    dynslam.write_graph(started, str(tmp_path / "py.g2o"))
+    assert (tmp_path / "py.g2o").read_text() == (tmp_path / "cli.g2o").read_text()
+    default = dynslam.build(front, "oc_a", GT)
+    dynslam.write_graph(default, str(tmp_path / "default.g2o"))
+    assert (tmp_path / "py.g2o").read_text() != (tmp_path / "default.g2o").read_text()
+    with pytest.raises(dynslam.Error):
+        dynslam.build(front, "hy", GT, start=wc)
+    results = dynslam.compare(front, GT, formulations=("wc", "oc_a"), start="wc")
+    assert results["oc_a"]["report"].initial_cost == pytest.approx(
+        dynslam.solve(started, max_iterations=1).initial_cost, rel=1e-12)
+    with pytest.raises(ValueError):
+        dynslam.compare(front, GT, formulations=("oc_a",), start="wc")
