@@ -53,6 +53,10 @@ int RunBuild(int argc, char** argv) {
   compat.Apply(&options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);
+  if (!start_path.empty() && !IsObjectCentric(formulation)) {
+    std::cerr << "error: --start applies to oc_a, oc_b and oc_c, not " << formulation_name << "\n";
+    return kExitBadInput;
+  }
 
   ReadOptions read_options;
   compat.Apply(&read_options);
@@ -78,15 +82,15 @@ int RunBuild(int argc, char** argv) {
     return kExitBadInput;
   }
   if (!start_path.empty()) {
-    Expected<Graph> world_centric = ReadGraph(start_path);
+    Expected<Graph> world_centric = ReadGraph(start_path, read_options);
     if (!world_centric.ok()) {
       std::cerr << "error: " << world_centric.error().ToString() << "\n";
       return kExitBadInput;
     }
     Status started = StartFromWorldCentric(*front_end, *world_centric, options,
-                                           gt ? &*gt : nullptr, &*built);
+                                           gt ? &*gt : nullptr, &*built, start_path);
     if (!started.ok()) {
-      std::cerr << "error: --start " << start_path << ": " << started.error().ToString() << "\n";
+      std::cerr << "error: --start: " << started.error().ToString() << "\n";
       return kExitBadInput;
     }
     report.lines.push_back("initial values from " + start_path + " (--start, SPEC §3.5)");

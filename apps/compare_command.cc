@@ -293,11 +293,9 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   Expected<Graph> graph =
       BuildFormulation(front_end, formulation, build_options, gt, &build_report, front_end_name);
   if (!graph.ok()) return fail(graph.error(), kExitBadInput);
-  const bool object_centric = formulation != Formulation::kWorldCentric &&
-                              formulation != Formulation::kHybrid;
-  if (world_centric_start != nullptr && object_centric) {
+  if (world_centric_start != nullptr && IsObjectCentric(formulation)) {
     if (Status s = StartFromWorldCentric(front_end, *world_centric_start, build_options, gt,
-                                         &*graph);
+                                         &*graph, "wc's solution");
         !s.ok()) {
       return fail(s.error());
     }
@@ -478,9 +476,11 @@ int RunCompare(int argc, char** argv) {
   } else {
     TablesWithoutGroundTruth(rows, &markdown, &csv);
   }
-  if (start_wc) {
-    markdown = "(--start wc: oc_a, oc_b and oc_c started from wc's solution, so their steps and "
-               "times come after wc's; hy from the front end)\n\n" + markdown;
+  if (start_wc && !rows.empty()) {
+    markdown = "(--start wc: oc_a, oc_b and oc_c started from wc's solution (wc's termination: " +
+               rows.front().report.termination +
+               "), so their steps and times come after wc's; hy from the front end)\n\n" +
+               markdown;
   }
   if (compat.any()) {
     markdown = "(--compat " + compat.Describe() +

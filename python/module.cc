@@ -266,6 +266,9 @@ void DefineFunctions(py::module_& m) {
     Graph built = Unwrap(BuildFormulation(front_end, f, build_options,
                                           truth ? &*truth : nullptr, &report));
     if (!start.is_none()) {
+      if (!py::isinstance<Graph>(start)) {
+        throw py::type_error("start: a solved wc Graph (read_graph or solve(...).graph)");
+      }
       const Status s = StartFromWorldCentric(front_end, start.cast<const Graph&>(), build_options,
                                              truth ? &*truth : nullptr, &built);
       if (!s.ok()) throw ErrorException{s.error()};

@@ -950,40 +950,63 @@ Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation
   return builder.Build(formulation);
 }
 
+bool IsObjectCentric(Formulation formulation) {
+  return formulation == Formulation::kObjectCentricA ||
+         formulation == Formulation::kObjectCentricB ||
+         formulation == Formulation::kObjectCentricC;
+}
+
+namespace {
+
+bool SameLabel(const Label& a, const Label& b) {
+  return a.role == b.role && a.object == b.object && a.frame == b.frame &&
+         a.tracklet == b.tracklet;
+}
+
+// Empty when `graph` has exactly the vertex ids and labels of `expected`; else the first
+// vertex that differs.
+std::optional<std::string> FirstDifferentVertex(const Graph& graph, const Graph& expected) {
+  auto a = graph.vertices.begin(), b = expected.vertices.begin();
+  for (; a != graph.vertices.end() && b != expected.vertices.end(); ++a, ++b) {
+    if (a->first != b->first || !SameLabel(a->second.label, b->second.label)) break;
+  }
+  if (a == graph.vertices.end() && b == expected.vertices.end()) return std::nullopt;
+  const VertexId id = b != expected.vertices.end() ? b->first : a->first;
+  return "vertex " + std::to_string(id);
+}
+
+}  // namespace
+
 Status StartFromWorldCentric(const Graph& front_end, const Graph& world_centric,
                              const BuildOptions& options, const GroundTruth* ground_truth,
-                             Graph* built) {
-  const std::string name = "start wc";
-  std::optional<Formulation> formulation = FormulationOfGraph(*built);
-  if (formulation != Formulation::kObjectCentricA && formulation != Formulation::kObjectCentricB &&
-      formulation != Formulation::kObjectCentricC) {
-    return Error{name, 0, "applies to oc_a, oc_b and oc_c (the graph is " +
-                              FormulationLabelOf(*built) + ")"};
+                             Graph* built, const std::string& start_name) {
+  const std::optional<Formulation> formulation = FormulationOfGraph(*built);
+  if (!formulation || !IsObjectCentric(*formulation)) {
+    return Error{"", 0, "a start from wc applies to oc_a, oc_b and oc_c, not " +
+                            FormulationLabelOf(*built)};
   }
-  if (FormulationOfGraph(world_centric) != Formulation::kWorldCentric) {
-    return Error{name, 0, "the start must be a wc graph (it is " +
-                              FormulationLabelOf(world_centric) + ")"};
+  BuildOptions from_estimates = options;
+  from_estimates.motion_init = MotionInit::kFrontEnd;  // the motions are wc's solved ones
+  Expected<Graph> expected = BuildFormulation(front_end, Formulation::kWorldCentric,
+                                              from_estimates, ground_truth, nullptr);
+  if (!expected.ok()) return expected.error();
+  if (std::optional<std::string> differs = FirstDifferentVertex(world_centric, *expected)) {
+    return Error{start_name, 0, "not the wc graph of this front end with these build options (" +
+                                    *differs + " differs or is missing; it is " +
+                                    FormulationLabelOf(world_centric) + ")"};
   }
   Graph estimates = front_end;
-  for (auto& [id, vertex] : estimates.vertices) {
-    const Vertex* solved = world_centric.Find(id);
-    if (solved == nullptr) continue;  // dropped by the build (SPEC §3.1)
-    if (solved->label.role != vertex.label.role) {
-      return Error{name, 0, "vertex " + std::to_string(id) +
-                                " has another role in the wc graph: not built from this front end"};
-    }
-    vertex.value = solved->value;
+  for (const auto& [id, solved] : world_centric.vertices) {
+    estimates.vertices.at(id).value = solved.value;  // every wc vertex is a front-end vertex
   }
-  Expected<Graph> start = BuildFormulation(estimates, *formulation, options, ground_truth, nullptr);
+  Expected<Graph> start =
+      BuildFormulation(estimates, *formulation, from_estimates, ground_truth, nullptr);
   if (!start.ok()) return start.error();
-  for (auto& [id, vertex] : built->vertices) {
-    const Vertex* started = start->Find(id);
-    if (started == nullptr || started->label.role != vertex.label.role) {
-      return Error{name, 0, "vertex " + std::to_string(id) +
-                                " is not in the rebuilt graph: not built from this front end"};
-    }
-    vertex.value = started->value;
+  if (std::optional<std::string> differs = FirstDifferentVertex(*built, *start)) {
+    return Error{"", 0, "the graph to start is not " + std::string(FormulationName(*formulation)) +
+                            " of this front end with these build options (" + *differs + ")"};
   }
+  for (auto& [id, vertex] : built->vertices) vertex.value = start->vertices.at(id).value;
   return Status::Ok();
 }
 

@@ -128,7 +128,11 @@ else
   failed=$((failed + 1)); echo "FAIL: build --start changed the edges or kept the front end's values"
 fi
 check "build --start from an oc graph is bad input" 2 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_b --start "$work/oc_b.g2o" --out "$work/x.g2o"
-expect_output "build --start names what it needs" "the start must be a wc graph (it is oc_b)"
+expect_output "build --start names the file and what it needs" "oc_b.g2o: not the wc graph of this front end"
+check "build --start for wc is a usage error" 2 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation wc --start "$work/wc/solution.g2o" --out "$work/x.g2o"
+expect_output "build --start says which formulations" "applies to oc_a, oc_b and oc_c, not wc"
+check "build --start from a missing file" 2 "$dynslam" build "$data/synthetic/frontend.g2o" --formulation oc_a --start "$work/missing.g2o" --out "$work/x.g2o"
+expect_output "build --start names the missing file" "missing.g2o"
 check "compare --start wc without wc first is a usage error" 2 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/x" --formulations oc_b --start wc
 expect_output "compare --start wc says why" "wc must come first"
 check "compare --start wc" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots

@@ -714,12 +714,47 @@ TEST_F(ObjectInitTest, StartFromWorldCentricRefusesWhatItCannotStart) {
       BuildFormulation(front_end_, Formulation::kHybrid, BuildOptions(), &gt_, nullptr);
   ASSERT_TRUE(wc.ok() && hy.ok());
   Graph oc = Build(ObjectInit::kMotion);
-  const Status not_wc = StartFromWorldCentric(front_end_, oc, BuildOptions(), &gt_, &oc);
+  const Status not_wc = StartFromWorldCentric(front_end_, oc, BuildOptions(), &gt_, &oc, "x.g2o");
   ASSERT_FALSE(not_wc.ok());
-  EXPECT_NE(not_wc.error().message.find("must be a wc graph"), std::string::npos);
+  EXPECT_EQ(not_wc.error().file, "x.g2o");
+  EXPECT_NE(not_wc.error().message.find("not the wc graph of this front end"), std::string::npos);
   const Status hybrid = StartFromWorldCentric(front_end_, *wc, BuildOptions(), &gt_, &*hy);
   ASSERT_FALSE(hybrid.ok());
   EXPECT_NE(hybrid.error().message.find("applies to oc_a, oc_b and oc_c"), std::string::npos);
+  // A wc graph with other drops (longer segments kept only) or another label is refused.
+  BuildOptions longer;
+  longer.min_object_frames = 20;
+  Expected<Graph> fewer =
+      BuildFormulation(front_end_, Formulation::kWorldCentric, longer, &gt_, nullptr);
+  ASSERT_TRUE(fewer.ok());
+  EXPECT_FALSE(StartFromWorldCentric(front_end_, *fewer, BuildOptions(), &gt_, &oc).ok());
+  Graph relabelled = *wc;
+  for (auto& [id, v] : relabelled.vertices) {
+    if (v.label.role == Role::kMotion) {
+      ++v.label.frame;
+      break;
+    }
+  }
+  EXPECT_FALSE(StartFromWorldCentric(front_end_, relabelled, BuildOptions(), &gt_, &oc).ok());
+}
+
+// motion_init = identity resets the front end's motions; a start from wc keeps wc's.
+TEST_F(ObjectInitTest, StartFromWorldCentricKeepsWcMotionsUnderIdentityMotionInit) {
+  BuildOptions identity;
+  identity.motion_init = MotionInit::kIdentity;
+  Expected<Graph> wc =
+      BuildFormulation(front_end_, Formulation::kWorldCentric, BuildOptions(), &gt_, nullptr);
+  Expected<Graph> oc =
+      BuildFormulation(front_end_, Formulation::kObjectCentricB, identity, &gt_, nullptr);
+  ASSERT_TRUE(wc.ok() && oc.ok());
+  ASSERT_TRUE(StartFromWorldCentric(front_end_, *wc, identity, &gt_, &*oc).ok());
+  int motions = 0;
+  for (const auto& [id, v] : oc->vertices) {
+    if (v.label.role != Role::kMotion) continue;
+    EXPECT_EQ(v.value, wc->Find(id)->value) << "motion " << id;
+    motions += v.value != Pose::Identity().data;
+  }
+  EXPECT_GT(motions, 0) << "the front end's motions are not all identity";
 }
 
 TEST(ObjectInitNameTest, NamesRoundTrip) {

@@ -123,15 +123,20 @@ Expected<Graph> BuildFormulation(const Graph& front_end, Formulation formulation
                                  const BuildOptions& options, const GroundTruth* ground_truth,
                                  BuildReport* report, const std::string& name = "front-end");
 
+// oc_a, oc_b or oc_c.
+bool IsObjectCentric(Formulation formulation);
+
 // SPEC §3.5 `start wc`: `built` (oc_a, oc_b or oc_c, built from `front_end` with `options` and
 // `ground_truth`) given the initial values the same build gives when the front end's estimates
-// are those of `world_centric` (the wc graph of `front_end`, solved): cameras, static points,
-// motions and dynamic points at that solution, object poses and object-frame points by
-// `options.object_init` from them. The edges, the object priors included, stay `front_end`'s:
-// the cost function does not change, only where its solve starts (docs/CONVERGENCE.md §8).
+// are those of `world_centric` (the wc graph of `front_end` with `options`, solved): cameras,
+// static points, motions and dynamic points at that solution (whatever `options.motion_init`
+// says), object poses and object-frame points by `options.object_init` from them. The edges,
+// the object priors included, stay `front_end`'s: the cost function does not change, only
+// where its solve starts (docs/CONVERGENCE.md §8). `world_centric` must have exactly the
+// vertices and labels of that wc graph; `start_name` (a file name) is what errors blame.
 Status StartFromWorldCentric(const Graph& front_end, const Graph& world_centric,
                              const BuildOptions& options, const GroundTruth* ground_truth,
-                             Graph* built);
+                             Graph* built, const std::string& start_name = "wc solution");
 
 }  // namespace dynslam
 

@@ -27,7 +27,7 @@ def compare(frontend, gt=None, formulations=FORMULATIONS, build_options=None, st
         raise ValueError("start='wc': wc must come first in formulations")
     results = {}
     for formulation in formulations:
-        started = start == "wc" and formulation.startswith("oc_")
+        started = start == "wc" and formulation in ("oc_a", "oc_b", "oc_c")
         graph = build(frontend, formulation, gt,
                       start=results["wc"]["report"].graph if started else None,
                       **(build_options or {}))

@@ -203,6 +203,8 @@ def test_start_from_wc_matches_the_cli(tmp_path):
     assert (tmp_path / "py.g2o").read_text() != (tmp_path / "default.g2o").read_text()
     with pytest.raises(dynslam.Error):
         dynslam.build(front, "hy", GT, start=wc)
+    with pytest.raises(TypeError):
+        dynslam.build(front, "oc_a", GT, start=str(tmp_path / "wc.g2o"))
     results = dynslam.compare(front, GT, formulations=("wc", "oc_a"), start="wc")
     assert results["oc_a"]["report"].initial_cost == pytest.approx(
         dynslam.solve(started, max_iterations=1).initial_cost, rel=1e-12)
