@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/cost_function.h>
 #include <gtest/gtest.h>
 
@@ -399,6 +400,114 @@ TEST(WorldAnchoredObjectPointTest, EqualsTheResidualAtTheObjectFramePoint) {
                 .norm(),
             1e-10);
   EXPECT_LT(JacobianError(*further, further_blocks), 1e-7);
+}
+
+// The chain rule through m_L gives the Jacobians of one autodiff pass over all blocks at once
+// (the residual written as a single functor, below) to rounding, whichever pose is the anchor and
+// whichever Jacobians Ceres asks for.
+template <typename Inner, int kAnchor>
+struct OnePassAnchored {  // kAnchor < 3: one of Inner's poses; 3: a further pose block
+  Inner inner;
+  template <typename T>
+  bool operator()(const T* const a, const T* const b, const T* const c, const T* const d,
+                  T* residual) const {  // (L_prev, L_curr, H, w) or (X, L, L_a, w)
+    const T* const poses[] = {a, b, c};
+    T m_o[3];
+    if constexpr (kAnchor < 3) {
+      PoseInverseTransformPoint(poses[kAnchor], d, m_o);
+      return inner(a, b, c, m_o, residual);
+    } else {
+      PoseInverseTransformPoint(c, d, m_o);
+      return inner(a, b, m_o, residual);
+    }
+  }
+  template <typename T>
+  bool operator()(const T* const a, const T* const b, const T* const c, const T* const l_a,
+                  const T* const w, T* residual) const {  // (L_prev, L_curr, H, L_a, w)
+    T m_o[3];
+    PoseInverseTransformPoint(l_a, w, m_o);
+    return inner(a, b, c, m_o, residual);
+  }
+};
+
+using Jacobians = std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+
+// Evaluates with Jacobians of the blocks in `wanted` only (null pointers for the others).
+Jacobians EvaluateSome(const ceres::CostFunction& cost, const std::vector<Block>& blocks,
+                       const std::vector<bool>& wanted, Eigen::VectorXd* residual) {
+  std::vector<const double*> parameters;
+  Jacobians jacobians;
+  std::vector<double*> pointers;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    parameters.push_back(blocks[b].data());
+    jacobians.emplace_back(Eigen::MatrixXd::Constant(cost.num_residuals(), blocks[b].size(), 7.0));
+  }
+  for (size_t b = 0; b < blocks.size(); ++b) pointers.push_back(wanted[b] ? jacobians[b].data() : nullptr);
+  residual->resize(cost.num_residuals());
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), residual->data(), pointers.data()));
+  return jacobians;
+}
+
+void ExpectSameAsOnePass(const ceres::CostFunction& chained, const ceres::CostFunction& one_pass,
+                         const std::vector<Block>& blocks) {
+  const size_t n = blocks.size();
+  std::vector<std::vector<bool>> requests = {std::vector<bool>(n, true)};
+  for (size_t b = 0; b < n; ++b) {
+    std::vector<bool> only(n, false);
+    only[b] = true;
+    requests.push_back(only);
+  }
+  for (const std::vector<bool>& wanted : requests) {
+    Eigen::VectorXd r_chained, r_one_pass;
+    const Jacobians j_chained = EvaluateSome(chained, blocks, wanted, &r_chained);
+    const Jacobians j_one_pass = EvaluateSome(one_pass, blocks, std::vector<bool>(n, true), &r_one_pass);
+    EXPECT_LT((r_chained - r_one_pass).norm(), 1e-13 * (1 + r_one_pass.norm()));
+    EXPECT_LT((Residual(chained, blocks) - r_one_pass).norm(), 1e-13 * (1 + r_one_pass.norm()));
+    for (size_t b = 0; b < n; ++b) {
+      if (!wanted[b]) {
+        EXPECT_TRUE((j_chained[b].array() == 7.0).all()) << "block " << b << " was not asked for";
+        continue;
+      }
+      EXPECT_LT((j_chained[b] - j_one_pass[b]).norm(), 1e-12 * (1 + j_one_pass[b].norm()))
+          << "block " << b;
+    }
+  }
+}
+
+TEST(WorldAnchoredObjectPointTest, ChainRuleGivesTheOnePassJacobians) {
+  const Pose x = Exp((Vector6d() << 0.1, -0.2, 0.05, 1, 2, -3).finished());
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose l_curr = Compose(kOffset, l_prev);
+  const Pose l_a = Exp((Vector6d() << -0.3, 0.2, 0.1, 2, 0, 9).finished());
+  const Block w{4, -1, 12};
+
+  const ObjectPointMeasurementError measurement(Eigen::Vector3d(0.5, -0.3, 8), Information3());
+  std::unique_ptr<ceres::CostFunction> chained(
+      WorldAnchored<ObjectPointMeasurementError, 3, 2>::AtFurtherPose(measurement));
+  ceres::AutoDiffCostFunction<OnePassAnchored<ObjectPointMeasurementError, 3>, 3, kPoseSize,
+                              kPoseSize, kPoseSize, kPointSize>
+      one_pass(new OnePassAnchored<ObjectPointMeasurementError, 3>{measurement});
+  ExpectSameAsOnePass(*chained, one_pass, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(l_a), w});
+
+  const ObjectPointMotionError motion(Information3());
+  using Motion = WorldAnchored<ObjectPointMotionError, 3, 3>;
+  const std::vector<Block> own = {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), w};
+  std::unique_ptr<ceres::CostFunction> at_prev(Motion::AtOwnPose<0>(motion));
+  ceres::AutoDiffCostFunction<OnePassAnchored<ObjectPointMotionError, 0>, 3, kPoseSize, kPoseSize,
+                              kPoseSize, kPointSize>
+      one_pass_prev(new OnePassAnchored<ObjectPointMotionError, 0>{motion});
+  ExpectSameAsOnePass(*at_prev, one_pass_prev, own);
+  std::unique_ptr<ceres::CostFunction> at_curr(Motion::AtOwnPose<1>(motion));
+  ceres::AutoDiffCostFunction<OnePassAnchored<ObjectPointMotionError, 1>, 3, kPoseSize, kPoseSize,
+                              kPoseSize, kPointSize>
+      one_pass_curr(new OnePassAnchored<ObjectPointMotionError, 1>{motion});
+  ExpectSameAsOnePass(*at_curr, one_pass_curr, own);
+  std::unique_ptr<ceres::CostFunction> further(Motion::AtFurtherPose(motion));
+  ceres::AutoDiffCostFunction<OnePassAnchored<ObjectPointMotionError, 3>, 3, kPoseSize, kPoseSize,
+                              kPoseSize, kPoseSize, kPointSize>
+      one_pass_further(new OnePassAnchored<ObjectPointMotionError, 3>{motion});
+  ExpectSameAsOnePass(*further, one_pass_further,
+                      {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), PoseBlock(l_a), w});
 }
 
 // SPEC §7 item 2: (m_prev − H⁻¹·m_curr)/σ. H = translation (1,0,0), m_prev = 0,

@@ -55,7 +55,7 @@ void Store(const Eigen::Quaternion<T>& q, const Vector3<T>& t, T* pose) {
 
 // inverse = pose⁻¹. `inverse` may alias `pose`.
 template <typename T>
-void PoseInverse(const T* pose, T* inverse) {
+inline void PoseInverse(const T* pose, T* inverse) {
   using namespace se3_internal;
   const Eigen::Quaternion<T> q_inv = Rotation(pose).conjugate();
   const Vector3<T> t_inv = -(q_inv * Translation(pose));
