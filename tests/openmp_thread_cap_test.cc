@@ -35,16 +35,32 @@ TEST(OpenMpThreadCapTest, BoundsARegionThatAsksForMoreThreads) {
   EXPECT_EQ(ThreadsInARegionAskingForFour(), 4);
 }
 
+TEST(OpenMpThreadCapTest, BoundsARegionAtTwoThreads) {
+  const ScopedOpenMpThreadCap cap(2);
+  ASSERT_TRUE(cap.active());
+  const int threads = ThreadsInARegionAskingForFour();
+  EXPECT_GE(threads, 1);
+  EXPECT_LE(threads, 2);
+}
+
 TEST(OpenMpThreadCapTest, RestoresTheCallersSettings) {
   omp_set_dynamic(0);
   omp_set_num_threads(3);
-  {
-    const ScopedOpenMpThreadCap cap(2);
-    EXPECT_EQ(omp_get_max_threads(), 2);
-    EXPECT_NE(omp_get_dynamic(), 0);
+  omp_set_max_active_levels(2);
+  for (const int threads : {1, 2}) {
+    {
+      const ScopedOpenMpThreadCap cap(threads);
+      if (threads == 1) {
+        EXPECT_EQ(omp_get_max_active_levels(), 0);  // every region inactive: no team to wake
+      } else {
+        EXPECT_EQ(omp_get_max_threads(), 2);
+        EXPECT_NE(omp_get_dynamic(), 0);
+      }
+    }
+    EXPECT_EQ(omp_get_max_threads(), 3);
+    EXPECT_EQ(omp_get_dynamic(), 0);
+    EXPECT_EQ(omp_get_max_active_levels(), 2);
   }
-  EXPECT_EQ(omp_get_max_threads(), 3);
-  EXPECT_EQ(omp_get_dynamic(), 0);
 }
 
 // The cap is on while Ceres runs: the step callback runs in the thread that factors.
