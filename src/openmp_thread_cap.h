@@ -8,10 +8,10 @@
 // bounds such a region by the number of threads requested with omp_set_num_threads() when
 // dynamic adjustment is on (omp_set_dynamic), so this guard turns that on with `threads` for the
 // calling thread, the one Ceres factors in, and restores the settings when it goes out of scope.
-// With one thread it sets the maximum of active levels to 0 instead (every region runs in the
-// calling thread): under dynamic adjustment libgomp reads the load average (a sysinfo system
-// call) at every region, thousands per factorisation, which took more than a third of the linear solves'
-// time on synthetic/oc_a (docs/SOLVER.md "Cost of a step").
+// With one thread it sets the maximum of active levels to 0 instead, so that every region runs
+// in the calling thread: under dynamic adjustment libgomp reads the load average (a sysinfo
+// system call) at every region, thousands per factorisation, about a tenth of the linear solves'
+// time on synthetic/oc_a and kitti_0003/oc_b (docs/SOLVER.md).
 //
 // The OpenMP runtime is the one CHOLMOD loaded; its functions are looked up at run time so that
 // dynslam itself needs no OpenMP to build. Without a runtime (CHOLMOD built without OpenMP) the
