@@ -11,9 +11,9 @@
 // Both halves are Ceres autodiff: ObjectFramePoint (L_a, w) ↦ m_L and the residual over
 // (poses…, m_L); the Jacobians with respect to L_a and w are joined by the chain rule through m_L.
 // One autodiff pass over all blocks at once would carry Jets as wide as every block together
-// (31 for a motion edge) where the halves need 10 and 17–24: the chain rule halves the time of
-// these residuals with Jacobians (benchmarks/residuals_benchmark) for the same derivatives to
-// rounding (tests/cost_functions_test.cc).
+// (31 for a motion edge) where the halves need 10 and 17–24: with the chain rule these residuals
+// with Jacobians take 1.7–3× less time (benchmarks/residuals_benchmark, docs/SOLVER.md) for the
+// same derivatives to rounding (tests/cost_functions_test.cc).
 #ifndef DYNSLAM_COST_FUNCTIONS_WORLD_ANCHORED_OBJECT_POINT_H_
 #define DYNSLAM_COST_FUNCTIONS_WORLD_ANCHORED_OBJECT_POINT_H_
 
@@ -62,8 +62,8 @@ class WorldAnchoredCost final : public ceres::CostFunction {
     double m_o[kPointSize];
     double dm_danchor[kPointSize * kPoseSize], dm_dw[kPointSize * kPointSize];
     std::array<double*, 2> m_jacobians = {dm_danchor, dm_dw};
-    if (!object_frame_point_.Evaluate(anchor_blocks.data(), m_o,
-                                      chain ? m_jacobians.data() : nullptr)) {
+    if (!ObjectFramePointCost().Evaluate(anchor_blocks.data(), m_o,
+                                         chain ? m_jacobians.data() : nullptr)) {
       return false;
     }
     std::array<const double*, kPoses + 1> inner_blocks;
@@ -108,10 +108,15 @@ class WorldAnchoredCost final : public ceres::CostFunction {
     }
   }
 
+  // Stateless, so one instance serves every residual (and every thread: Evaluate is const).
+  static const ceres::CostFunction& ObjectFramePointCost() {
+    static const ceres::AutoDiffCostFunction<ObjectFramePoint, kPointSize, kPoseSize, kPointSize>
+        cost(new ObjectFramePoint);
+    return cost;
+  }
+
   std::unique_ptr<ceres::CostFunction> inner_;
   const int anchor_;
-  ceres::AutoDiffCostFunction<ObjectFramePoint, kPointSize, kPoseSize, kPointSize>
-      object_frame_point_{new ObjectFramePoint};
 };
 
 // Cost functions for the residual functor Inner (kResiduals residuals over kPoses poses, then m_L).
