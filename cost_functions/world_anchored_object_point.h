@@ -38,6 +38,14 @@ struct ObjectFramePoint {
   }
 };
 
+// ObjectFramePoint as an autodiff cost function. Stateless, so one instance serves every
+// anchored residual (and every thread: Evaluate is const).
+inline const ceres::CostFunction& ObjectFramePointCost() {
+  static const ceres::AutoDiffCostFunction<ObjectFramePoint, kPointSize, kPoseSize, kPointSize>
+      cost(new ObjectFramePoint);
+  return cost;
+}
+
 // The residual of `inner` (an autodiff cost function over kPoses poses, then m_L) at
 // m_L = L_a⁻¹ · w. The anchor L_a is one of inner's poses (blocks: poses…, w) or a further pose
 // block after them (blocks: poses…, L_a, w).
@@ -106,13 +114,6 @@ class WorldAnchoredCost final : public ceres::CostFunction {
       Eigen::Map<RowMajor<kPointSize>>(dr_dw).noalias() =
           j_m * Eigen::Map<const MRowMajor<kPointSize>>(dm_dw);
     }
-  }
-
-  // Stateless, so one instance serves every residual (and every thread: Evaluate is const).
-  static const ceres::CostFunction& ObjectFramePointCost() {
-    static const ceres::AutoDiffCostFunction<ObjectFramePoint, kPointSize, kPoseSize, kPointSize>
-        cost(new ObjectFramePoint);
-    return cost;
   }
 
   std::unique_ptr<ceres::CostFunction> inner_;
