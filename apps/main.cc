@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "huge_page_heap.h"
 
 namespace {
 
@@ -38,6 +39,7 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dynslam::AdviseHugePagesForTheHeap();  // before anything large is allocated
   // Past a file-size limit (ulimit -f) a write then fails with EFBIG and the output writers
   // report the file (dynslam/file_io.h), instead of SIGXFSZ ending the process mid-write.
   std::signal(SIGXFSZ, SIG_IGN);

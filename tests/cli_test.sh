@@ -156,5 +156,14 @@ else
   failed=$((failed + 1)); echo "FAIL: --compat dynosam:2 did not put Huber 1e-4 on hybrid_point edges"
 fi
 
+# The huge-page heap (apps/huge_page_heap.h) changes where blocks live, never what is computed.
+check "solve with the huge-page heap" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_on" --max-iterations 5
+check "solve without it" 0 env DYNSLAM_HUGE_PAGES=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_off" --max-iterations 5
+if cmp -s "$work/heap_on/solution.g2o" "$work/heap_off/solution.g2o"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: DYNSLAM_HUGE_PAGES=0 changed the solution"
+fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
