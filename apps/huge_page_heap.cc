@@ -14,6 +14,7 @@ namespace {
 
 constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
 constexpr int kGlibcDefaultMmapMax = 65536;
+constexpr int kGlibcDefaultTrimThreshold = 128 * 1024;
 
 bool UnderSanitizer() {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -45,6 +46,12 @@ HugePageHeap Not(const char* reason) {
   return heap;
 }
 
+HugePageHeap RestoreMallocAndNot(const char* reason) {
+  mallopt(M_MMAP_MAX, kGlibcDefaultMmapMax);
+  mallopt(M_TRIM_THRESHOLD, kGlibcDefaultTrimThreshold);
+  return Not(reason);
+}
+
 }  // namespace
 
 HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes) {
@@ -61,8 +68,7 @@ HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes) {
   const uintptr_t after = reinterpret_cast<uintptr_t>(sbrk(0));
   if (block == nullptr || after < before + reserve) {  // the heap could not grow: mmap'd
     std::free(block);
-    mallopt(M_MMAP_MAX, kGlibcDefaultMmapMax);
-    return Not("the heap cannot grow by the reserve");
+    return RestoreMallocAndNot("the heap cannot grow by the reserve");
   }
   mallopt(M_TRIM_THRESHOLD, -1);  // keep the heap's top (and its advice) when blocks are freed
   std::free(block);
@@ -71,7 +77,8 @@ HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes) {
   heap.begin = (before + kHugePage - 1) & ~(kHugePage - 1);
   heap.end = after & ~(kHugePage - 1);
   if (madvise(reinterpret_cast<void*>(heap.begin), heap.end - heap.begin, MADV_HUGEPAGE) != 0) {
-    return Not("madvise(MADV_HUGEPAGE) refused (a kernel without transparent huge pages)");
+    return RestoreMallocAndNot(
+        "madvise(MADV_HUGEPAGE) refused (a kernel without transparent huge pages)");
   }
   heap.advised = true;
   return heap;

@@ -4,9 +4,9 @@
 //
 // A solve touches most of its memory once: the Jacobian, JᵀJ and CHOLMOD's factor are allocated
 // at the first step and reused. Each 4 KiB page then costs a page fault, and on virtual machines
-// such as this project's 2-core one a fault costs ~16 µs: kitti_0003/wc faults 25 400 times, a
-// third of its process time (docs/SOLVER.md "Page faults"). With 2 MiB pages it faults ~1 100
-// times. Debian's kernels give huge pages only to memory advised with MADV_HUGEPAGE
+// such as this project's 2-core one a fault costs 8–16 µs: kitti_0003/wc faults 25 500 times,
+// about a quarter of its process time (docs/SOLVER.md "Page faults"). With 2 MiB pages it faults
+// 900–1 300 times. Debian's kernels give huge pages only to memory advised with MADV_HUGEPAGE
 // (/sys/kernel/mm/transparent_hugepage/enabled = madvise), and glibc's malloc does not advise
 // its heap unless GLIBC_TUNABLES=glibc.malloc.hugetlb=1 is set before the process starts.
 //
@@ -14,8 +14,9 @@
 // advises it, and keeps malloc in it: every block from the heap (no mmap'd chunks) and the heap's
 // top never returned to the kernel. Memory beyond the reserve is ordinary pages. It does nothing
 // when DYNSLAM_HUGE_PAGES=0 is set, under a sanitizer's allocator, with strict overcommit
-// (vm.overcommit_memory = 2, where a reserve would be charged), or when the heap cannot grow
-// (e.g. ulimit -d); then malloc is left as it was.
+// (vm.overcommit_memory = 2, where a reserve would be charged); when the heap cannot grow
+// (e.g. ulimit -d) or the kernel refuses the advice, malloc gets its settings back (glibc's
+// dynamic mmap threshold alone stays off once mallopt has been called).
 #ifndef DYNSLAM_APPS_HUGE_PAGE_HEAP_H_
 #define DYNSLAM_APPS_HUGE_PAGE_HEAP_H_
 

@@ -103,7 +103,7 @@ TEST(HugePageHeapTest, AdvisesTheReserveAndKeepsLargeBlocksInIt) {
   EXPECT_EXIT(AdvisedHeapChild(), testing::ExitedWithCode(0), "");
 }
 
-TEST(HugePageHeapTest, LeavesMallocAsItWasWhenTheHeapCannotGrow) {
+TEST(HugePageHeapTest, FallsBackToOrdinaryMallocWhenTheHeapCannotGrow) {
   if (SanitizerBuild()) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
   EXPECT_EXIT(HeapThatCannotGrowChild(), testing::ExitedWithCode(0), "");
 }
