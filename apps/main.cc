@@ -34,6 +34,10 @@ void PrintUsage(std::ostream& out) {
   for (const Command& command : kCommands) {
     out << "  " << command.name << "\n      " << command.summary << "\n";
   }
+  out << "\nenvironment:\n"
+      << "  DYNSLAM_HUGE_PAGES=0\n      keep the heap on ordinary 4 KiB pages (docs/SOLVER.md \"Page "
+         "faults\")\n"
+      << "  DYNSLAM_SCRIPTS_DIR\n      where `compare` finds its plotting scripts\n";
 }
 
 }  // namespace
