@@ -16,18 +16,6 @@ constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
 constexpr int kGlibcDefaultMmapMax = 65536;
 constexpr int kGlibcDefaultTrimThreshold = 128 * 1024;
 
-bool UnderSanitizer() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  return true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
-    __has_feature(thread_sanitizer)
-  return true;
-#endif
-#endif
-  return false;
-}
-
 bool StrictOvercommit() {
   std::ifstream in("/proc/sys/vm/overcommit_memory");
   int mode = 0;
@@ -57,7 +45,7 @@ HugePageHeap RestoreMallocAndNot(const char* reason) {
 HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes) {
   const char* setting = std::getenv("DYNSLAM_HUGE_PAGES");
   if (setting != nullptr && std::strcmp(setting, "0") == 0) return Not("DYNSLAM_HUGE_PAGES=0");
-  if (UnderSanitizer()) return Not("a sanitizer's allocator");
+  if (kSanitizerAllocator) return Not("a sanitizer's allocator");
   if (StrictOvercommit()) return Not("strict overcommit (vm.overcommit_memory = 2)");
   const size_t reserve = reserve_bytes > 0 ? reserve_bytes : DefaultReserve();
   if (reserve < 2 * kHugePage) return Not("no reserve");

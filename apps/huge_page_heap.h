@@ -26,6 +26,20 @@
 
 namespace dynslam {
 
+// Built with a sanitizer, whose allocator replaces malloc: then the heap is left alone.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kSanitizerAllocator = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
+    __has_feature(thread_sanitizer)
+inline constexpr bool kSanitizerAllocator = true;
+#else
+inline constexpr bool kSanitizerAllocator = false;
+#endif
+#else
+inline constexpr bool kSanitizerAllocator = false;
+#endif
+
 struct HugePageHeap {
   bool advised = false;
   uintptr_t begin = 0, end = 0;  // the advised range, 2 MiB aligned, when `advised`

@@ -6,10 +6,10 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,14 +18,6 @@ namespace dynslam {
 namespace {
 
 constexpr size_t kMiB = size_t{1} << 20;
-
-bool SanitizerBuild() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  return true;
-#else
-  return false;
-#endif
-}
 
 bool KernelHasTransparentHugePages() {
   std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
@@ -98,13 +90,13 @@ void SwitchedOffChild() {
 }
 
 TEST(HugePageHeapTest, AdvisesTheReserveAndKeepsLargeBlocksInIt) {
-  if (SanitizerBuild()) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
+  if (kSanitizerAllocator) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
   if (!KernelHasTransparentHugePages()) GTEST_SKIP() << "transparent huge pages are off";
   EXPECT_EXIT(AdvisedHeapChild(), testing::ExitedWithCode(0), "");
 }
 
 TEST(HugePageHeapTest, FallsBackToOrdinaryMallocWhenTheHeapCannotGrow) {
-  if (SanitizerBuild()) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
+  if (kSanitizerAllocator) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
   EXPECT_EXIT(HeapThatCannotGrowChild(), testing::ExitedWithCode(0), "");
 }
 
