@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "huge_page_heap.h"
+#include "inline_openmp_regions.h"
 
 namespace {
 
@@ -37,6 +38,8 @@ void PrintUsage(std::ostream& out) {
   out << "\nenvironment:\n"
       << "  DYNSLAM_HUGE_PAGES=0\n      keep the heap on ordinary 4 KiB pages (docs/SOLVER.md \"Page "
          "faults\")\n"
+      << "  DYNSLAM_INLINE_OPENMP=0\n      run CHOLMOD's one-thread OpenMP regions through libgomp "
+         "(docs/SOLVER.md\n      \"OpenMP regions of one thread\")\n"
       << "  DYNSLAM_SCRIPTS_DIR\n      where `compare` finds its plotting scripts\n";
 }
 
@@ -44,6 +47,7 @@ void PrintUsage(std::ostream& out) {
 
 int main(int argc, char** argv) {
   dynslam::AdviseHugePagesForTheHeap();  // before anything large is allocated
+  dynslam::InlineOneThreadOpenMpRegions();
   // Past a file-size limit (ulimit -f) a write then fails with EFBIG and the output writers
   // report the file (dynslam/file_io.h), instead of SIGXFSZ ending the process mid-write.
   std::signal(SIGXFSZ, SIG_IGN);

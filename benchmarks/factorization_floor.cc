@@ -8,7 +8,8 @@
 //   factorization_floor GRAPH [--repeat N] [--lambda X]
 //
 // Prints one CSV row per (matrix, method): graph, matrix, method, n, nnz_lower, nnz_factor,
-// seconds (the median of N factorisations).
+// seconds (the median of N factorisations). CHOLMOD runs with one thread, its regions inline
+// as in the `dynslam` command (apps/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +24,9 @@
 #include "dynslam/graph_io.h"
 #include "dynslam/solver.h"
 #include "src/openmp_thread_cap.h"
+#ifdef DYNSLAM_INLINE_OPENMP_REGIONS
+#include "inline_openmp_regions.h"
+#endif
 
 namespace dynslam {
 namespace {
@@ -182,4 +186,9 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace dynslam
 
-int main(int argc, char** argv) { return dynslam::Run(argc, argv); }
+int main(int argc, char** argv) {
+#ifdef DYNSLAM_INLINE_OPENMP_REGIONS
+  dynslam::InlineOneThreadOpenMpRegions();  // CHOLMOD's regions as `dynslam solve` runs them
+#endif
+  return dynslam::Run(argc, argv);
+}

@@ -165,5 +165,13 @@ else
   failed=$((failed + 1)); echo "FAIL: DYNSLAM_HUGE_PAGES=0 changed the solution"
 fi
 
+# So do the inline OpenMP regions (apps/inline_openmp_regions.h): CHOLMOD computes the same.
+check "solve with libgomp's regions" 0 env DYNSLAM_INLINE_OPENMP=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/regions_libgomp" --max-iterations 5
+if cmp -s "$work/heap_on/solution.g2o" "$work/regions_libgomp/solution.g2o"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: DYNSLAM_INLINE_OPENMP=0 changed the solution"
+fi
+
 echo "cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
