@@ -57,13 +57,14 @@ def gtsam_section(ratios_csv, reference):
         return [f"Not measured: {ratios_csv} is missing (run benchmarks/gtsam_ratios.py)."]
     meta = json.loads(pathlib.Path(str(ratios_csv) + ".json").read_text())
     runs = read(ratios_csv)
+    reps = 1 + max(int(run["rep"]) for run in runs)
     return [
         f"    {meta['command']}  # {meta['date']}, commit {meta['commit']}, "
         f"{meta.get('machine', 'machine not recorded')}",
         "",
         "TIMINGS.md (in the reference set) times GTSAM 4.2's `released` profile and dynslam at "
         "commit ed665dc in one run on one machine of our kind; the script times ed665dc and the "
-        "current commit in one run here (alternating, medians of three) and carries each ratio: "
+        f"current commit in one run here (alternating, medians of {reps}) and carries each ratio: "
         "ratio × ed665dc's time / the current time. Processes: the whole `solve`, each tool with "
         "its defaults. Solve to GTSAM's cost: Ceres's preprocessing plus the minimiser time at "
         "the first accepted step at or below GTSAM's `released` final cost. Above 1×, dynslam is "
