@@ -5,6 +5,7 @@
 // then draws the convergence (Fig. 4) and trajectory plots with scripts/plot_*.py. Without ground
 // truth it tabulates the solves alone.
 #include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -160,30 +161,29 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
 
 // Runs args[0] (an absolute path, no shell: paths may hold spaces or quotes) with stdin from
 // /dev/null and stdout and stderr captured in *output. Returns its exit code, or -1 when it could
-// not be started or did not exit normally.
+// not be started or did not exit normally. posix_spawn, not fork: the child does not copy the
+// page tables of a process that may hold a whole sequence's solve (glibc spawns with vfork
+// semantics and reports a failed exec as an error here).
 int RunCaptured(const std::vector<std::string>& args, std::string* output) {
   std::vector<char*> argv;
   for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
   argv.push_back(nullptr);
   int pipe_fds[2];
-  if (pipe(pipe_fds) != 0) return -1;
+  if (pipe2(pipe_fds, O_CLOEXEC) != 0) return -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::fflush(stdout);
   std::fflush(stderr);
-  const pid_t pid = fork();
-  if (pid < 0) {
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
     close(pipe_fds[0]);
     close(pipe_fds[1]);
     return -1;
-  }
-  if (pid == 0) {  // the child: async-signal-safe calls only until exec
-    close(pipe_fds[0]);
-    dup2(pipe_fds[1], STDOUT_FILENO);
-    dup2(pipe_fds[1], STDERR_FILENO);
-    close(pipe_fds[1]);
-    const int null = open("/dev/null", O_RDONLY);
-    if (null >= 0) dup2(null, STDIN_FILENO);
-    execv(argv[0], argv.data());
-    _exit(127);
   }
   close(pipe_fds[1]);
   char buffer[4096];
