@@ -1,5 +1,5 @@
 // Runs the OpenMP parallel regions that would get a team of one thread as plain calls, in the
-// `dynslam` command and the benchmarks that time its factorisations. Their main() calls
+// `dynslam` command and the benchmarks that time its solves and factorisations. Their main() calls
 // InlineOneThreadOpenMpRegions(); the library does not (see below).
 //
 // CHOLMOD's supernodal factorisation (Debian 12: libcholmod3, built with OpenMP) enters a

@@ -24,6 +24,9 @@
 #include "dynslam/graph_io.h"
 #include "dynslam/se3.h"
 #include "dynslam/solver.h"
+#ifdef DYNSLAM_INLINE_OPENMP_REGIONS
+#include "inline_openmp_regions.h"
+#endif
 
 namespace dynslam {
 namespace {
@@ -205,6 +208,9 @@ int Run(const Args& args) {
 }  // namespace dynslam
 
 int main(int argc, char** argv) {
+#ifdef DYNSLAM_INLINE_OPENMP_REGIONS
+  dynslam::InlineOneThreadOpenMpRegions();  // CHOLMOD's regions as `dynslam solve` runs them
+#endif
   dynslam::Args args;
   if (!dynslam::ParseArgs(argc, argv, &args)) {
     std::fprintf(stderr,
