@@ -254,8 +254,9 @@ def main():
         "## The floor: one sparse Cholesky factorisation (target: a step ≤ 1.5× the fastest)",
         "",
         "`factorization_floor GRAPH` at the initial values, damping 1e-6·diag(JᵀJ); median of 5; "
-        "fill-reducing analysis (AMD) not timed; CHOLMOD in one OpenMP thread, as `dynslam "
-        "solve` runs it. `normal` is the matrix the default solver factors (sparse normal "
+        "fill-reducing analysis (AMD) not timed; CHOLMOD in one OpenMP thread with its regions "
+        "run as plain calls, as `dynslam solve` runs it (docs/SOLVER.md \"OpenMP regions of one "
+        "thread\"). `normal` is the matrix the default solver factors (sparse normal "
         "Cholesky on CHOLMOD); `reduced` has the static points eliminated (what sparse Schur "
         "factors on graphs with points; on pose graphs the same as `normal`). A step also "
         "evaluates residuals and Jacobians and forms JᵀJ, which the floor does not: per step, "
