@@ -5,6 +5,7 @@
 
 #include "build_flags.h"
 #include "cli.h"
+#include "command_inputs.h"
 #include "compat_flags.h"
 #include "commands.h"
 #include "dynslam/formulation.h"
@@ -66,14 +67,7 @@ int RunBuild(int argc, char** argv) {
     return kExitBadInput;
   }
   std::optional<GroundTruth> gt;
-  if (!gt_path.empty()) {
-    Expected<GroundTruth> read = ReadGroundTruth(gt_path);
-    if (!read.ok()) {
-      std::cerr << "error: " << read.error().ToString() << "\n";
-      return kExitBadInput;
-    }
-    gt = std::move(read).value();
-  }
+  if (!ReadGroundTruthIfGiven(gt_path, &gt)) return kExitBadInput;
   BuildReport report;
   Expected<Graph> built = BuildFormulation(*front_end, formulation, options, gt ? &*gt : nullptr,
                                            &report, std::filesystem::path(front_end_path).filename().string());

@@ -20,6 +20,7 @@
 
 #include "build_flags.h"
 #include "cli.h"
+#include "command_inputs.h"
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
@@ -437,14 +438,7 @@ int RunCompare(int argc, char** argv) {
     return kExitBadInput;
   }
   std::optional<GroundTruth> gt;
-  if (!gt_path.empty()) {
-    Expected<GroundTruth> read = ReadGroundTruth(gt_path);
-    if (!read.ok()) {
-      std::cerr << "error: " << read.error().ToString() << "\n";
-      return kExitBadInput;
-    }
-    gt = std::move(read).value();
-  }
+  if (!ReadGroundTruthIfGiven(gt_path, &gt)) return kExitBadInput;
   // The tables mark a finished compare: a run that fails or is killed leaves none behind.
   for (const char* name : {"tables.md", "tables.csv"}) {
     if (Status s = RemoveIfPresent((fs::path(out_dir) / name).string()); !s.ok()) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cli.h"
+#include "command_inputs.h"
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
@@ -110,14 +111,7 @@ int RunSolve(int argc, char** argv) {
     return kExitBadInput;
   }
   std::optional<GroundTruth> ground_truth;
-  if (!gt_path.empty()) {
-    Expected<GroundTruth> read = ReadGroundTruth(gt_path);
-    if (!read.ok()) {
-      std::cerr << "error: " << read.error().ToString() << "\n";
-      return kExitBadInput;
-    }
-    ground_truth = std::move(read).value();
-  }
+  if (!ReadGroundTruthIfGiven(gt_path, &ground_truth)) return kExitBadInput;
   SolveOutputs outputs;
   outputs.input = graph_path;
   if (const std::vector<int64_t>& lines = read_report.repaired_information_lines; !lines.empty()) {

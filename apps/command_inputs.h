@@ -1,0 +1,19 @@
+// Inputs that several subcommands read alike (build, compare, solve).
+#ifndef DYNSLAM_APPS_COMMAND_INPUTS_H_
+#define DYNSLAM_APPS_COMMAND_INPUTS_H_
+
+#include <optional>
+#include <string>
+
+#include "dynslam/ground_truth.h"
+
+namespace dynslam::cli {
+
+// Reads the ground-truth file (SPEC §2) at `path` into *gt; leaves *gt empty when `path` is
+// empty (no --gt). Returns false after printing the reader's error (file, line, problem) to
+// stderr; the caller then exits with kExitBadInput.
+bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>* gt);
+
+}  // namespace dynslam::cli
+
+#endif  // DYNSLAM_APPS_COMMAND_INPUTS_H_
