@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -51,6 +52,7 @@ struct Row {
   int64_t edges = 0;
   SolveReport report;
   std::optional<Metrics> metrics;  // with ground truth
+  bool reused = false;             // --resume: read back from an earlier run's outputs
 };
 
 std::string Fixed(double value, int digits) {
@@ -273,36 +275,99 @@ void DrawPlots(const std::string& out_dir, const std::vector<Row>& rows, const s
   draw("plot_trajectory.py", "trajectory.png", "", trajectory_args);
 }
 
+// What every formulation of one compare run is built, solved and written with.
+struct RunSettings {
+  BuildOptions build_options;
+  SolverOptions solver_options;
+  const CompatFlags* compat = nullptr;
+  const ExportFlags* export_flags = nullptr;
+  const GroundTruth* gt = nullptr;
+  fs::path out_dir;
+  std::string front_end_name;
+  bool resume = false;
+};
+
+// --resume: the solve already in `dir`, read back when it is the one this run would do and it
+// finished — graph.g2o byte-equal to `built`, summary.json (written last, SPEC §4) ending by
+// convergence or the step limit with the same solver options. The row comes from summary.json,
+// the metrics from solution.g2o. Anything else (missing, interrupted, other graph or options,
+// unreadable): nothing, and the formulation is solved again. --export's files are written
+// again from the solution read back.
+std::optional<Row> FinishedSolveIn(const fs::path& dir, Formulation formulation, const Graph& built,
+                                   const SolverOptions& options, const RunSettings& run,
+                                   Graph* solved_out) {
+  Expected<SolveSummary> summary = ReadSolveSummary((dir / "summary.json").string());
+  if (!summary.ok()) return std::nullopt;
+  const SolveReport& report = summary->report;
+  if (report.termination != "convergence" && report.termination != "no_convergence") {
+    return std::nullopt;
+  }
+  if (summary->solver_options_json != SolverOptionsJson(ResolveAuto(options, built))) {
+    return std::nullopt;
+  }
+  std::ifstream in(dir / "graph.g2o", std::ios::binary);
+  std::ostringstream on_disk, rebuilt;
+  on_disk << in.rdbuf();
+  WriteGraph(built, rebuilt);
+  if (!in || on_disk.str() != rebuilt.str()) return std::nullopt;
+  Expected<Graph> solved = ReadGraph((dir / "solution.g2o").string());
+  if (!solved.ok()) return std::nullopt;
+  Row row;
+  row.formulation = formulation;
+  row.variables = static_cast<int64_t>(built.NumVariables());
+  row.edges = static_cast<int64_t>(built.NumEdges());
+  row.report = report;
+  row.reused = true;
+  if (run.gt) row.metrics = ComputeMetrics(*solved, *run.gt);
+  SolveOutputs exported;
+  run.export_flags->Apply(&exported);
+  const std::vector<Trajectory> trajectories =
+      exported.export_formats.empty() ? std::vector<Trajectory>{}
+                                      : ExportedTrajectories(*solved, run.gt);
+  for (const TrajectoryFormat format : exported.export_formats) {
+    if (!WriteTrajectories(dir.string(), trajectories, format, exported.export_rate_hz).ok()) {
+      return std::nullopt;
+    }
+  }
+  if (solved_out != nullptr) *solved_out = std::move(*solved);
+  std::fprintf(stderr, "[compare] %s: the finished solve in %s reused (--resume)\n",
+               FormulationName(formulation), dir.string().c_str());
+  return row;
+}
+
 // Builds one formulation into DIR/<f>/graph.g2o, solves it, scores it when there is ground truth
 // and writes the solve's outputs (SPEC §4) and build.txt beside it. On failure: the error is
 // printed, *exit_code set and nothing returned.
 std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulation,
-                                    const BuildOptions& build_options,
-                                    const SolverOptions& solver_options, const CompatFlags& compat,
-                                    const ExportFlags& export_flags,
-                                    const GroundTruth* gt, const fs::path& out_dir,
-                                    const std::string& front_end_name,
-                                    const Graph* world_centric_start, Graph* solved_out,
-                                    int* exit_code) {
+                                    const RunSettings& run, const Graph* world_centric_start,
+                                    Graph* solved_out, int* exit_code) {
   const char* name = FormulationName(formulation);
+  const GroundTruth* gt = run.gt;
   auto fail = [exit_code](const Error& error, int code = kExitFailed) {
     std::cerr << "error: " << error.ToString() << "\n";
     *exit_code = code;
     return std::nullopt;
   };
   BuildReport build_report;
-  Expected<Graph> graph =
-      BuildFormulation(front_end, formulation, build_options, gt, &build_report, front_end_name);
+  Expected<Graph> graph = BuildFormulation(front_end, formulation, run.build_options, gt,
+                                           &build_report, run.front_end_name);
   if (!graph.ok()) return fail(graph.error(), kExitBadInput);
   if (world_centric_start != nullptr && IsObjectCentric(formulation)) {
-    if (Status s = StartFromWorldCentric(front_end, *world_centric_start, build_options, gt,
+    if (Status s = StartFromWorldCentric(front_end, *world_centric_start, run.build_options, gt,
                                          &*graph, "wc's solution");
         !s.ok()) {
       return fail(s.error());
     }
     build_report.lines.push_back("initial values from wc's solution (--start wc, SPEC §3.5)");
   }
-  const fs::path dir = out_dir / name;
+  const fs::path dir = run.out_dir / name;
+  SolverOptions options = run.solver_options;
+  run.compat->Apply(formulation == Formulation::kWorldCentric, &options);
+  if (run.resume) {
+    if (std::optional<Row> row = FinishedSolveIn(dir, formulation, *graph, options, run, solved_out)) {
+      return row;
+    }
+  }
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (Status s = WriteGraph(*graph, (dir / "graph.g2o").string()); !s.ok()) {
@@ -310,8 +375,6 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   }
   std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n", name,
                graph->NumVariables(), graph->NumEdges());
-  SolverOptions options = solver_options;
-  compat.Apply(formulation == Formulation::kWorldCentric, &options);
   Row row;
   row.formulation = formulation;
   row.variables = static_cast<int64_t>(graph->NumVariables());
@@ -329,7 +392,7 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   outputs.report = &row.report;
   outputs.warnings = build_report.warnings;
   outputs.ground_truth = gt;
-  export_flags.Apply(&outputs);
+  run.export_flags->Apply(&outputs);
   if (gt) {
     row.metrics = ComputeMetrics(*graph, *gt);
     outputs.metrics = row.metrics;
@@ -384,6 +447,11 @@ int RunCompare(int argc, char** argv) {
                    "where oc_a, oc_b and oc_c start: the front end's estimates, or wc's solution "
                    "(SPEC §3.5; wc must come first in --formulations; their steps and times then "
                    "add to wc's)");
+  bool resume = false;
+  parser.AddFlag("resume", &resume,
+                 "reuse each formulation's finished solve already in DIR (the same built graph "
+                 "and solver options, ended by convergence or the step limit) instead of solving "
+                 "it again: a long compare that was stopped goes on from the next formulation");
   BuildFlags build_flags(&parser);
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
@@ -446,15 +514,22 @@ int RunCompare(int argc, char** argv) {
       return kExitFailed;
     }
   }
+  RunSettings run;
+  run.build_options = build_options;
+  run.solver_options = solver_options;
+  run.compat = &compat;
+  run.export_flags = &export_flags;
+  run.gt = gt ? &*gt : nullptr;
+  run.out_dir = out_dir;
+  run.front_end_name = fs::path(front_end_path).filename().string();
+  run.resume = resume;
   std::vector<Row> rows;
-  const std::string name = fs::path(front_end_path).filename().string();
   Graph world_centric;  // wc's solution, with --start wc
   for (const Formulation formulation : formulations) {
     int exit_code = kExitOk;
     const bool wc = formulation == Formulation::kWorldCentric;
     std::optional<Row> row = SolveFormulation(
-        *front_end, formulation, build_options, solver_options, compat, export_flags,
-        gt ? &*gt : nullptr, fs::path(out_dir), name, start_wc && !wc ? &world_centric : nullptr,
+        *front_end, formulation, run, start_wc && !wc ? &world_centric : nullptr,
         start_wc && wc ? &world_centric : nullptr, &exit_code);
     if (!row) return exit_code;
     rows.push_back(std::move(*row));
@@ -475,6 +550,14 @@ int RunCompare(int argc, char** argv) {
                rows.front().report.termination +
                "), so their steps and times come after wc's; hy from the front end)\n\n" +
                markdown;
+  }
+  std::string reused;
+  for (const Row& row : rows) {
+    if (row.reused) reused += std::string(reused.empty() ? "" : ", ") + FormulationName(row.formulation);
+  }
+  if (!reused.empty()) {
+    markdown = "(--resume: " + reused + " read back from the finished solves in " + out_dir +
+               "; their steps and times are those solves')\n\n" + markdown;
   }
   if (compat.any()) {
     markdown = "(--compat " + compat.Describe() +

@@ -206,4 +206,36 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
   return Status::Ok();
 }
 
+std::string SolverOptionsJson(const SolverOptions& options) {
+  return DumpJson(SolverJson(options));
+}
+
+Expected<SolveSummary> ReadSolveSummary(const std::string& path) {
+  Expected<JsonValue> read = ReadJsonFile(path);
+  if (!read.ok()) return read.error();
+  const JsonValue& json = *read;
+  try {
+    SolveSummary summary;
+    SolveReport& report = summary.report;
+    report.termination = json.at("termination").get<std::string>();
+    report.termination_detail = json.at("termination_detail").get<std::string>();
+    report.usable = json.at("usable").get<bool>();
+    report.initial_cost = NumberAt(json, {"initial_cost"});
+    report.final_cost = NumberAt(json, {"final_cost"});
+    report.iterations = json.at("iterations").get<int>();
+    report.steps = json.at("steps").get<int>();
+    report.extrapolations = json.at("extrapolations").get<int>();
+    report.gauge_moves = json.at("gauge_moves").get<int>();
+    report.time_total_s = NumberAt(json, {"time_s", "total"});
+    report.time_preprocessor_s = NumberAt(json, {"time_s", "preprocessing"});
+    report.time_minimizer_s = NumberAt(json, {"time_s", "minimizer"});
+    report.time_evaluation_s = NumberAt(json, {"time_s", "residual_jacobian_evaluation"});
+    report.time_linear_solver_s = NumberAt(json, {"time_s", "linear_solve"});
+    summary.solver_options_json = DumpJson(json.at("solver"));
+    return summary;
+  } catch (const nlohmann::json::exception& e) {
+    return Error{path, 0, std::string("not a summary.json of dynslam solve: ") + e.what()};
+  }
+}
+
 }  // namespace dynslam

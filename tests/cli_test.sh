@@ -153,6 +153,23 @@ if grep -q "^(--start wc" "$work/compare_start/tables.md" &&
 else
   failed=$((failed + 1)); echo "FAIL: compare --start wc: tables.md or oc_b/build.txt does not say so"
 fi
+# --resume reads finished solves back (the same tables, with a note); other options solve again.
+cp "$work/compare_start/tables.md" "$work/start_tables.md"
+check "compare --resume" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume
+expect_output "compare --resume reuses wc" "wc: the finished solve in .* reused"
+expect_output "compare --resume reuses oc_b" "oc_b: the finished solve in .* reused"
+if grep -q "^(--resume: wc, oc_b read back" "$work/compare_start/tables.md" &&
+   [ "$(tail -n +3 "$work/compare_start/tables.md")" = "$(cat "$work/start_tables.md")" ]; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: compare --resume: tables.md differs from the run it resumed"
+fi
+check "compare --resume with other solver options" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
+expect_output "compare --resume solves again when the options differ" "oc_b: solving"
+echo "{" > "$work/compare_start/oc_b/summary.json"
+check "compare --resume after a broken summary.json" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
+expect_output "compare --resume keeps wc" "wc: the finished solve in .* reused"
+expect_output "compare --resume solves oc_b again" "oc_b: solving"
 check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
 check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 9
 check "bad --compat dynosam item" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat dynosam:5

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
@@ -144,6 +145,40 @@ TEST(JsonIoTest, NumberAtIsNanForMissingKeysAndNonNumbers) {
   EXPECT_TRUE(std::isnan(NumberAt(json, {"a", "c"})));
   EXPECT_TRUE(std::isnan(NumberAt(json, {"s"})));
   EXPECT_TRUE(std::isnan(NumberAt(json, {"s", "deeper"})));
+}
+
+// compare --resume reads a finished solve's summary.json back: what it keeps of the report is
+// bit-exact, and the options text is what SolverOptionsJson writes for the options used.
+TEST(JsonIoTest, ASummaryReadsBackItsReportAndOptions) {
+  const SmallSolve solve = SolveSmallGraph();
+  const std::string path = (std::filesystem::path(::testing::TempDir()) / "summary.json").string();
+  ASSERT_TRUE(WriteFileAtomically(path, solve.Summary()).ok());
+  Expected<SolveSummary> read = ReadSolveSummary(path);
+  ASSERT_TRUE(read.ok()) << read.error().ToString();
+  const SolveReport& r = read->report;
+  EXPECT_EQ(r.termination, solve.report.termination);
+  EXPECT_EQ(r.termination_detail, solve.report.termination_detail);
+  EXPECT_EQ(r.usable, solve.report.usable);
+  EXPECT_EQ(r.final_cost, solve.report.final_cost);
+  EXPECT_EQ(r.initial_cost, solve.report.initial_cost);
+  EXPECT_EQ(r.iterations, solve.report.iterations);
+  EXPECT_EQ(r.steps, solve.report.steps);
+  EXPECT_EQ(r.time_total_s, solve.report.time_total_s);
+  EXPECT_EQ(read->solver_options_json, SolverOptionsJson(solve.report.options_used));
+  SolverOptions other = solve.report.options_used;
+  other.max_iterations += 1;
+  EXPECT_NE(read->solver_options_json, SolverOptionsJson(other));
+}
+
+TEST(JsonIoTest, ASummaryWithoutItsFieldsIsAnErrorNamingTheFile) {
+  const std::string path = (std::filesystem::path(::testing::TempDir()) / "partial.json").string();
+  for (const char* text : {"{\"termination\": \"convergence\"}", "[1, 2]", "{\"steps\": \"3\"}"}) {
+    ASSERT_TRUE(WriteFileAtomically(path, text).ok());
+    Expected<SolveSummary> read = ReadSolveSummary(path);
+    ASSERT_FALSE(read.ok()) << text;
+    EXPECT_EQ(read.error().file, path);
+  }
+  EXPECT_FALSE(ReadSolveSummary(path + ".missing").ok());
 }
 
 }  // namespace

@@ -46,6 +46,22 @@ std::string SummaryJson(const SolveOutputs& outputs);
 // files; summary.json last.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 
+// summary.json's "solver" entry for `options` as a solve used them (no auto left: ResolveAuto),
+// as JSON text. Two solves whose texts are equal ran with the same options.
+std::string SolverOptionsJson(const SolverOptions& options);
+
+// What summary.json holds of a finished solve, read back (`dynslam compare --resume`).
+struct SolveSummary {
+  // termination, its detail, usable, initial and final cost, iterations, steps, extrapolations,
+  // gauge moves and the times; not the counts by role and kind, the convergence rows, the
+  // warnings or Ceres's report.
+  SolveReport report;
+  std::string solver_options_json;  // as SolverOptionsJson writes it
+};
+
+// Errors name the file: unreadable, not JSON, or a field missing or of the wrong type.
+Expected<SolveSummary> ReadSolveSummary(const std::string& path);
+
 }  // namespace dynslam
 
 #endif  // DYNSLAM_SOLVE_OUTPUT_H_
