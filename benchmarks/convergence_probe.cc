@@ -113,6 +113,45 @@ void PrintGaps(const Graph& graph, const std::vector<Snapshot>& snapshots) {
   }
 }
 
+// The tangent-space difference b ⊟ a of every vertex, stacked (6 per pose as [ω; ρ], 3 per point).
+Eigen::VectorXd Difference(const Graph& graph, const Snapshot& a, const Snapshot& b) {
+  std::vector<double> d;
+  size_t i = 0;
+  for (const auto& [id, v] : graph.vertices) {
+    if (v.type == VertexType::kPoint) {
+      for (int k = 0; k < 3; ++k) d.push_back(b.values[i][k] - a.values[i][k]);
+    } else {
+      const Vector6d xi = Log(Compose(Inverse(Pose{a.values[i]}), Pose{b.values[i]}));
+      d.insert(d.end(), xi.data(), xi.data() + 6);
+    }
+    ++i;
+  }
+  return Eigen::Map<Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
+}
+
+// Is the creep one direction, shrinking geometrically? Per accepted step k: the step δ_k's norm,
+// its cosine with δ_{k−1}, the ratio r = |δ_k| / |δ_{k−1}|, the gap g_k to the final state, and
+// what is left of it after moving on along δ_k by the geometric tail r/(1−r) (Aitken), and by the
+// best multiple of δ_k (the part of the gap not along the last step).
+void PrintDirections(const Graph& graph, const std::vector<Snapshot>& snapshots) {
+  std::printf("# directions\nstep,step_norm,cos_prev,ratio,gap,gap_after_tail,gap_off_step\n");
+  Eigen::VectorXd previous;
+  for (size_t k = 1; k < snapshots.size(); ++k) {
+    const Eigen::VectorXd step = Difference(graph, snapshots[k - 1], snapshots[k]);
+    const Eigen::VectorXd gap = Difference(graph, snapshots[k], snapshots.back());
+    double cos_prev = std::nan(""), ratio = std::nan(""), after_tail = std::nan("");
+    if (previous.size() == step.size() && previous.norm() > 0 && step.norm() > 0) {
+      cos_prev = step.dot(previous) / (step.norm() * previous.norm());
+      ratio = step.norm() / previous.norm();
+      if (ratio < 1) after_tail = (gap - step * (ratio / (1 - ratio))).norm();
+    }
+    const double along = step.squaredNorm() > 0 ? gap.dot(step) / step.squaredNorm() : 0;
+    std::printf("%d,%.3e,%.4f,%.4f,%.3e,%.3e,%.3e\n", snapshots[k].record.step, step.norm(),
+                cos_prev, ratio, gap.norm(), after_tail, (gap - along * step).norm());
+    previous = step;
+  }
+}
+
 void PrintCosts(const std::vector<Snapshot>& snapshots) {
   std::printf("# cost\nstep");
   for (const EdgeKind kind : kAllEdgeKinds) std::printf(",%s", EdgeKindName(kind));
@@ -199,6 +238,7 @@ int Run(const Args& args) {
               report->final_cost, report->steps, report->iterations, report->termination.c_str());
   PrintSteps(report->convergence);
   PrintGaps(*graph, snapshots);
+  PrintDirections(*graph, snapshots);
   PrintCosts(snapshots);
   PrintLate(*graph, snapshots, args.top);
   return 0;
