@@ -320,15 +320,10 @@ std::optional<Row> FinishedSolveIn(const fs::path& dir, Formulation formulation,
   row.reused = true;
   if (run.gt) row.metrics = ComputeMetrics(*solved, *run.gt);
   SolveOutputs exported;
+  exported.solved = &*solved;
+  exported.ground_truth = run.gt;
   run.export_flags->Apply(&exported);
-  const std::vector<Trajectory> trajectories =
-      exported.export_formats.empty() ? std::vector<Trajectory>{}
-                                      : ExportedTrajectories(*solved, run.gt);
-  for (const TrajectoryFormat format : exported.export_formats) {
-    if (!WriteTrajectories(dir.string(), trajectories, format, exported.export_rate_hz).ok()) {
-      return std::nullopt;
-    }
-  }
+  if (!WriteExportedTrajectories(dir.string(), exported).ok()) return std::nullopt;
   if (solved_out != nullptr) *solved_out = std::move(*solved);
   std::fprintf(stderr, "[compare] %s: the finished solve in %s reused (--resume)\n",
                FormulationName(formulation), dir.string().c_str());

@@ -175,6 +175,18 @@ std::string SummaryJson(const SolveOutputs& outputs) {
   return DumpJson(summary);
 }
 
+Status WriteExportedTrajectories(const std::string& dir, const SolveOutputs& outputs) {
+  if (outputs.export_formats.empty()) return Status::Ok();
+  const std::vector<Trajectory> trajectories =
+      ExportedTrajectories(*outputs.solved, outputs.ground_truth);
+  for (const TrajectoryFormat format : outputs.export_formats) {
+    if (Status s = WriteTrajectories(dir, trajectories, format, outputs.export_rate_hz); !s.ok()) {
+      return s;
+    }
+  }
+  return Status::Ok();
+}
+
 // summary.json marks a complete set (SPEC §4): it is removed before anything else is written and
 // written last, so a directory whose write failed or was killed holds no summary.json.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
@@ -192,14 +204,7 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"convergence.csv", ConvergenceCsv(*outputs.report)},
       {"summary.json", SummaryJson(outputs) + "\n"},
   };
-  const std::vector<Trajectory> trajectories =
-      outputs.export_formats.empty() ? std::vector<Trajectory>{}
-                                     : ExportedTrajectories(graph, outputs.ground_truth);
-  for (const TrajectoryFormat format : outputs.export_formats) {
-    if (Status s = WriteTrajectories(dir, trajectories, format, outputs.export_rate_hz); !s.ok()) {
-      return s;
-    }
-  }
+  if (Status s = WriteExportedTrajectories(dir, outputs); !s.ok()) return s;
   for (const auto& [name, text] : files) {
     if (Status s = WriteFileAtomically((base / name).string(), text); !s.ok()) return s;
   }

@@ -46,6 +46,10 @@ std::string SummaryJson(const SolveOutputs& outputs);
 // files; summary.json last.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 
+// Only the trajectory files of `outputs.export_formats` (none when empty), from `outputs.solved`
+// and `outputs.ground_truth`; part of WriteSolveOutputs.
+Status WriteExportedTrajectories(const std::string& dir, const SolveOutputs& outputs);
+
 // summary.json's "solver" entry for `options` as a solve used them (no auto left: ResolveAuto),
 // as JSON text. Two solves whose texts are equal ran with the same options.
 std::string SolverOptionsJson(const SolverOptions& options);
