@@ -22,6 +22,7 @@
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
 #include "src/number_text.h"
+#include "src/text_fields.h"
 
 namespace dynslam {
 namespace {
@@ -59,10 +60,7 @@ class LineParser {
 
   // A finite number.
   bool Number(size_t i, double* value, Error* error) const {
-    std::string_view text = fields_[i];
-    if (!text.empty() && text[0] == '+') text.remove_prefix(1);
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
-    if (ec != std::errc() || end != text.data() + text.size() || text.empty()) {
+    if (!ParseWholeNumber(fields_[i], value)) {
       *error = Fail("field " + std::to_string(i + 1) + " '" + std::string(fields_[i]) +
                     "' is not a number");
       return false;
@@ -318,7 +316,7 @@ class Reader {
     int64_t number = 0;
     while (std::getline(in, line)) {
       ++number;
-      Split(line, &fields);
+      SplitFields(BeforeComment(line), &fields);
       if (fields.empty()) continue;
       const std::string_view tag = fields.front();
       fields.erase(fields.begin());
@@ -337,21 +335,6 @@ class Reader {
   }
 
  private:
-  static void Split(const std::string& line, std::vector<std::string_view>* fields) {
-    fields->clear();
-    std::string_view rest(line);
-    if (const size_t hash = rest.find('#'); hash != std::string_view::npos) {
-      rest = rest.substr(0, hash);
-    }
-    size_t i = 0;
-    while (i < rest.size()) {
-      while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
-      const size_t start = i;
-      while (i < rest.size() && rest[i] != ' ' && rest[i] != '\t' && rest[i] != '\r') ++i;
-      if (i > start) fields->push_back(rest.substr(start, i - start));
-    }
-  }
-
   Status AddVertex(VertexId id, Vertex vertex, const LineParser& p) {
     auto [it, inserted] = graph_.vertices.emplace(id, vertex);
     if (inserted) return Status::Ok();

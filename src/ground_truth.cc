@@ -1,6 +1,5 @@
 #include "dynslam/ground_truth.h"
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,32 +9,9 @@
 
 #include "dynslam/file_io.h"
 #include "src/number_text.h"
+#include "src/text_fields.h"
 
 namespace dynslam {
-namespace {
-
-std::vector<std::string_view> Fields(const std::string& line) {
-  std::vector<std::string_view> fields;
-  std::string_view rest(line);
-  if (const size_t hash = rest.find('#'); hash != std::string_view::npos) rest = rest.substr(0, hash);
-  size_t i = 0;
-  while (i < rest.size()) {
-    while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
-    const size_t start = i;
-    while (i < rest.size() && rest[i] != ' ' && rest[i] != '\t' && rest[i] != '\r') ++i;
-    if (i > start) fields.push_back(rest.substr(start, i - start));
-  }
-  return fields;
-}
-
-template <typename T>
-bool ParseField(std::string_view text, T* value) {
-  if (!text.empty() && text[0] == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
-  return ec == std::errc() && end == text.data() + text.size() && !text.empty();
-}
-
-}  // namespace
 
 const Pose* GroundTruth::Camera(int64_t frame) const {
   auto it = cameras.find(frame);
@@ -61,10 +37,11 @@ Expected<GroundTruth> ReadGroundTruth(const std::string& path) {
 Expected<GroundTruth> ReadGroundTruth(std::istream& in, const std::string& path) {
   GroundTruth gt;
   std::string line;
+  std::vector<std::string_view> f;
   int64_t number = 0;
   while (std::getline(in, line)) {
     ++number;
-    const std::vector<std::string_view> f = Fields(line);
+    SplitFields(BeforeComment(line), &f);
     if (f.empty()) continue;
     auto fail = [&](const std::string& message) { return Error{path, number, message}; };
     const bool camera = f[0] == "CAMERA";
@@ -78,14 +55,14 @@ Expected<GroundTruth> ReadGroundTruth(std::istream& in, const std::string& path)
                   (camera ? " (k tx ty tz qx qy qz qw)" : " (k j tx ty tz qx qy qz qw)"));
     }
     int64_t frame = 0, object = 0;
-    if (!ParseField(f[1], &frame) || frame < 0) return fail("frame '" + std::string(f[1]) + "' is not a non-negative integer");
-    if (!camera && (!ParseField(f[2], &object) || object < 0)) {
+    if (!ParseWholeNumber(f[1], &frame) || frame < 0) return fail("frame '" + std::string(f[1]) + "' is not a non-negative integer");
+    if (!camera && (!ParseWholeNumber(f[2], &object) || object < 0)) {
       return fail("object '" + std::string(f[2]) + "' is not a non-negative integer");
     }
     const size_t first = camera ? 2 : 3;
     double v[7];
     for (int i = 0; i < 7; ++i) {
-      if (!ParseField(f[first + i], &v[i]) || !std::isfinite(v[i])) {
+      if (!ParseWholeNumber(f[first + i], &v[i]) || !std::isfinite(v[i])) {
         return fail("field '" + std::string(f[first + i]) + "' is not a finite number");
       }
     }

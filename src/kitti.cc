@@ -1,54 +1,34 @@
 #include "dynslam/kitti.h"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
+
+#include "src/text_fields.h"
 
 namespace dynslam {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::vector<std::string_view> Fields(const std::string& line) {
-  std::vector<std::string_view> fields;
-  const std::string_view rest(line);
-  size_t i = 0;
-  while (i < rest.size()) {
-    while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
-    const size_t start = i;
-    while (i < rest.size() && rest[i] != ' ' && rest[i] != '\t' && rest[i] != '\r') ++i;
-    if (i > start) fields.push_back(rest.substr(start, i - start));
-  }
-  return fields;
-}
-
-// A finite number, the whole field (from_chars: locale-independent).
+// A finite number, the whole field.
 bool ParseDouble(std::string_view text, double* value) {
-  if (!text.empty() && text[0] == '+') text.remove_prefix(1);
-  if (text.empty()) return false;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
-  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(*value);
-}
-
-bool ParseInt(std::string_view text, int64_t* value) {
-  if (!text.empty() && text[0] == '+') text.remove_prefix(1);
-  if (text.empty()) return false;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
-  return ec == std::errc() && end == text.data() + text.size();
+  return ParseWholeNumber(text, value) && std::isfinite(*value);
 }
 
 // Calls `record(fields, line_number)` for each non-blank line; stops at the first error.
 template <typename F>
 Status ForEachLine(std::istream& in, const std::string& path, F record) {
   std::string line;
+  std::vector<std::string_view> fields;
   int64_t number = 0;
   while (std::getline(in, line)) {
     ++number;
-    const std::vector<std::string_view> fields = Fields(line);
+    SplitFields(line, &fields);
     if (fields.empty()) continue;
     if (Status status = record(fields, number); !status.ok()) return status;
   }
@@ -150,10 +130,10 @@ Expected<std::vector<LabelRecord>> ReadLabels(std::istream& in, const std::strin
     LabelRecord r;
     r.line = line;
     int64_t truncated = 0, occluded = 0;
-    if (!ParseInt(f[0], &r.frame) || r.frame < 0) {
+    if (!ParseWholeNumber(f[0], &r.frame) || r.frame < 0) {
       return Error{path, line, "frame '" + std::string(f[0]) + "' is not a non-negative integer"};
     }
-    if (!ParseInt(f[1], &r.track_id) || r.track_id < -1) {
+    if (!ParseWholeNumber(f[1], &r.track_id) || r.track_id < -1) {
       return Error{path, line, "track id '" + std::string(f[1]) + "' is not an integer ≥ −1"};
     }
     r.type = std::string(f[2]);
@@ -164,7 +144,7 @@ Expected<std::vector<LabelRecord>> ReadLabels(std::istream& in, const std::strin
       return Error{path, line, "truncated '" + std::string(f[3]) + "' is not a number from −1 to 2"};
     }
     truncated = static_cast<int64_t>(truncated_value);
-    if (!ParseInt(f[4], &occluded) || occluded < -1 || occluded > 3) {
+    if (!ParseWholeNumber(f[4], &occluded) || occluded < -1 || occluded > 3) {
       return Error{path, line, "occluded '" + std::string(f[4]) + "' is not an integer from −1 to 3"};
     }
     r.truncated = static_cast<int>(truncated);
