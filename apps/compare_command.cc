@@ -12,12 +12,14 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "build_flags.h"
 #include "cli.h"
@@ -287,6 +289,23 @@ struct RunSettings {
   bool resume = false;
 };
 
+// True when the file at `path` holds exactly `text`, read a megabyte at a time (a paper-scale
+// graph is hundreds of megabytes: no second copy of it in memory).
+bool FileHolds(const fs::path& path, const std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> chunk(1 << 20);
+  size_t offset = 0;
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const size_t n = static_cast<size_t>(in.gcount());
+    if (n > text.size() - offset || std::memcmp(chunk.data(), text.data() + offset, n) != 0) {
+      return false;
+    }
+    offset += n;
+  }
+  return in.eof() && !in.bad() && offset == text.size();
+}
+
 // --resume: the solve already in `dir`, read back when it is the one this run would do and it
 // finished — graph.g2o byte-equal to `built`, summary.json (written last, SPEC §4) ending by
 // convergence or the step limit with the same solver options. The row comes from summary.json,
@@ -305,11 +324,9 @@ std::optional<Row> FinishedSolveIn(const fs::path& dir, Formulation formulation,
   if (summary->solver_options_json != SolverOptionsJson(ResolveAuto(options, built))) {
     return std::nullopt;
   }
-  std::ifstream in(dir / "graph.g2o", std::ios::binary);
-  std::ostringstream on_disk, rebuilt;
-  on_disk << in.rdbuf();
+  std::ostringstream rebuilt;
   WriteGraph(built, rebuilt);
-  if (!in || on_disk.str() != rebuilt.str()) return std::nullopt;
+  if (!FileHolds(dir / "graph.g2o", rebuilt.str())) return std::nullopt;
   Expected<Graph> solved = ReadGraph((dir / "solution.g2o").string());
   if (!solved.ok()) return std::nullopt;
   Row row;

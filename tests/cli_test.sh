@@ -170,6 +170,13 @@ echo "{" > "$work/compare_start/oc_b/summary.json"
 check "compare --resume after a broken summary.json" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
 expect_output "compare --resume keeps wc" "wc: the finished solve in .* reused"
 expect_output "compare --resume solves oc_b again" "oc_b: solving"
+# A graph.g2o one byte longer or shorter than the rebuild is another graph: solved again.
+for edit in "append" "truncate"; do
+  if [ "$edit" = append ]; then echo "#" >> "$work/compare_start/wc/graph.g2o"
+  else truncate -s -1 "$work/compare_start/wc/graph.g2o"; fi
+  check "compare --resume after wc/graph.g2o changed ($edit)" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
+  expect_output "compare --resume solves wc again when its graph differs ($edit)" "wc: solving"
+done
 check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
 check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 9
 check "bad --compat dynosam item" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat dynosam:5
