@@ -324,9 +324,7 @@ std::optional<Row> FinishedSolveIn(const fs::path& dir, Formulation formulation,
   if (summary->solver_options_json != SolverOptionsJson(ResolveAuto(options, built))) {
     return std::nullopt;
   }
-  std::ostringstream rebuilt;
-  WriteGraph(built, rebuilt);
-  if (!FileHolds(dir / "graph.g2o", rebuilt.str())) return std::nullopt;
+  if (!FileHolds(dir / "graph.g2o", GraphText(built))) return std::nullopt;
   Expected<Graph> solved = ReadGraph((dir / "solution.g2o").string());
   if (!solved.ok()) return std::nullopt;
   Row row;

@@ -653,6 +653,8 @@ Expected<Graph> ReadGraph(const std::string& path, const ReadOptions& options, R
   return ReadGraph(in, path, options, report);
 }
 
+std::string GraphText(const Graph& graph) { return Serialise(graph); }
+
 void WriteGraph(const Graph& graph, std::ostream& out) { out << Serialise(graph); }
 
 Status WriteGraph(const Graph& graph, const std::string& path) {

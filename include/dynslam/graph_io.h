@@ -51,6 +51,7 @@ Expected<Graph> ReadGraph(std::istream& in, const std::string& name,
 // Requires roles assigned.
 Status WriteGraph(const Graph& graph, const std::string& path);
 void WriteGraph(const Graph& graph, std::ostream& out);
+std::string GraphText(const Graph& graph);  // what WriteGraph writes
 
 }  // namespace dynslam
 
