@@ -38,19 +38,13 @@ int RunBuild(int argc, char** argv) {
   BuildFlags build_flags(&parser);
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (std::optional<std::string> problem = compat.Finish()) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(compat.Finish())) return kExitBadInput;
   if (out_path.empty()) {
     std::cerr << "error: --out FILE is required\n";
     return kExitBadInput;
   }
   BuildOptions options;
-  if (std::optional<std::string> problem = build_flags.Finish(&options)) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(build_flags.Finish(&options))) return kExitBadInput;
   compat.Apply(&options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);

@@ -38,6 +38,11 @@ std::optional<double> ParseDouble(const std::string& text) {
 
 }  // namespace
 
+bool ReportedProblem(const std::optional<std::string>& problem) {
+  if (problem) std::cerr << "error: " << *problem << "\n";
+  return problem.has_value();
+}
+
 ArgParser::ArgParser(std::string usage, std::string description)
     : usage_(std::move(usage)), description_(std::move(description)) {}
 

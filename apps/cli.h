@@ -15,6 +15,10 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;    // the solve (or other work) failed
 inline constexpr int kExitBadInput = 2;  // bad usage or bad input
 
+// Prints "error: PROBLEM" to stderr when a flag group's Finish() found one, and says whether it
+// did: `if (ReportedProblem(flags.Finish())) return kExitBadInput;`.
+bool ReportedProblem(const std::optional<std::string>& problem);
+
 // Declares options and positionals, parses argv and writes --help. Every option is spelled
 // out (`--linear-solver NAME`); `--name=value` is accepted too. A default is the value the
 // target holds when the option is declared.

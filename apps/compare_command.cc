@@ -57,6 +57,15 @@ struct Row {
   bool reused = false;             // --resume: read back from an earlier run's outputs
 };
 
+// The row of `formulation` as built: its sizes, before any solve.
+Row BuiltRow(Formulation formulation, const Graph& built) {
+  Row row;
+  row.formulation = formulation;
+  row.variables = static_cast<int64_t>(built.NumVariables());
+  row.edges = static_cast<int64_t>(built.NumEdges());
+  return row;
+}
+
 std::string Fixed(double value, int digits) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
@@ -327,10 +336,7 @@ std::optional<Row> FinishedSolveIn(const fs::path& dir, Formulation formulation,
   if (!FileHolds(dir / "graph.g2o", GraphText(built))) return std::nullopt;
   Expected<Graph> solved = ReadGraph((dir / "solution.g2o").string());
   if (!solved.ok()) return std::nullopt;
-  Row row;
-  row.formulation = formulation;
-  row.variables = static_cast<int64_t>(built.NumVariables());
-  row.edges = static_cast<int64_t>(built.NumEdges());
+  Row row = BuiltRow(formulation, built);
   row.report = report;
   row.reused = true;
   if (run.gt) row.metrics = ComputeMetrics(*solved, *run.gt);
@@ -385,10 +391,7 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
   }
   std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n", name,
                graph->NumVariables(), graph->NumEdges());
-  Row row;
-  row.formulation = formulation;
-  row.variables = static_cast<int64_t>(graph->NumVariables());
-  row.edges = static_cast<int64_t>(graph->NumEdges());
+  Row row = BuiltRow(formulation, *graph);
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();
@@ -467,14 +470,8 @@ int RunCompare(int argc, char** argv) {
   CompatFlags compat(&parser);
   ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (std::optional<std::string> problem = export_flags.Finish()) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
-  if (std::optional<std::string> problem = compat.Finish()) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
+  if (ReportedProblem(compat.Finish())) return kExitBadInput;
   if (out_dir.empty()) {
     std::cerr << "error: --out DIR is required\n";
     return kExitBadInput;
@@ -495,16 +492,10 @@ int RunCompare(int argc, char** argv) {
     return kExitBadInput;
   }
   BuildOptions build_options;
-  if (std::optional<std::string> problem = build_flags.Finish(&build_options)) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(build_flags.Finish(&build_options))) return kExitBadInput;
   compat.Apply(&build_options);
   SolverOptions solver_options;
-  if (std::optional<std::string> problem = solver_flags.Finish(&solver_options)) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(solver_flags.Finish(&solver_options))) return kExitBadInput;
   PrintProgressAfterOneSecond(&solver_options);
   StopOnSignals(&solver_options);
 

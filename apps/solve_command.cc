@@ -80,23 +80,14 @@ int RunSolve(int argc, char** argv) {
   CompatFlags compat(&parser);
   ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (std::optional<std::string> problem = compat.Finish()) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
-  if (std::optional<std::string> problem = export_flags.Finish()) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(compat.Finish())) return kExitBadInput;
+  if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
   if (out_dir.empty()) {
     std::cerr << "error: --out DIR is required\n";
     return kExitBadInput;
   }
   SolverOptions options;
-  if (std::optional<std::string> problem = solver_flags.Finish(&options)) {
-    std::cerr << "error: " << *problem << "\n";
-    return kExitBadInput;
-  }
+  if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
   PrintProgressAfterOneSecond(&options);
   StopOnSignals(&options);
 
