@@ -66,7 +66,7 @@ SolverFlags::SolverFlags(ArgParser* parser)
       parser_(parser) {
   parser->AddChoice("minimizer", &minimizer_, {"auto", "lm", "dogleg"},
                     "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: dogleg "
-                    "for world-centric graphs with points (wc), else lm");
+                    "for wc and hy (and other graphs with points), else lm");
   parser->AddChoice("linear-solver", &linear_solver_,
                     {"auto", "sparse_schur", "sparse_normal_cholesky", "iterative_schur",
                      "dense_schur"},

@@ -21,8 +21,9 @@
 namespace dynslam {
 
 // kAuto (the defaults) chooses per graph (ResolveAuto): sparse normal Cholesky on SuiteSparse
-// (Eigen if this Ceres lacks it) for every graph; Powell's dogleg for world-centric graphs with
-// point variables (wc), Levenberg–Marquardt for the others (oc_a, oc_b, oc_c, pose graphs)
+// (Eigen if this Ceres lacks it) for every graph; Powell's dogleg for wc and hy (the formulation
+// table's rule, formulation.h) and other graphs with point variables, Levenberg–Marquardt for
+// oc_a, oc_b, oc_c and pose graphs
 // — per class, the fastest to the optimum in the benchmarks that also stays out of the poor
 // basins seen on simulated scenes (docs/SOLVER.md, docs/BENCHMARKS.md).
 enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
