@@ -17,6 +17,7 @@
 #include "dynslam/se3.h"
 #include "dynslam/se3_manifold.h"
 #include "src/edge_costs.h"
+#include "src/blas_runtime.h"
 #include "src/openmp_thread_cap.h"
 #include "src/segment_gauge.h"
 
@@ -976,6 +977,14 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   ConvergenceRecorder recorder(options, &assembly, &scratch, &gauges, start);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
+  UseOpenBlasThreads(options.threads);       // src/blas_runtime.h
+  const ScopedBlasExclusion blas_exclusion;
+  if (blas_exclusion.waited()) {
+    report.warnings.push_back(
+        "this process's BLAS is OpenBLAS built without locking (libopenblas0-serial), unsafe "
+        "for concurrent solves: this solve waited for another to finish (install "
+        "libopenblas0-pthread, docs/DEPENDENCIES.md)");
+  }
   const SegmentTimes times =
       RunSegments(options, gauges, &ceres_options, &recorder, &assembly, &summary);
 

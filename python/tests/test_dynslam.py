@@ -210,3 +210,34 @@ def test_start_from_wc_matches_the_cli(tmp_path):
         dynslam.solve(started, max_iterations=1).initial_cost, rel=1e-12)
     with pytest.raises(ValueError):
         dynslam.compare(front, GT, formulations=("oc_a",), start="wc")
+
+
+def test_concurrent_solves_equal_serial_ones():
+    """Eight solves on eight Python threads (the GIL is released while solving) end exactly
+    where the same solves end one after another (issue 44: a BLAS unsafe for concurrent callers
+    made them differ)."""
+    import threading
+    graphs = []
+    for seed in (1, 2):
+        frontend, gt = dynslam.simulate(synthetic=True, seed=seed)
+        graphs += [dynslam.build(frontend, f, gt) for f in ("wc", "oc_a", "oc_b", "oc_c")]
+
+    def outcome(report):
+        values = [report.graph.vertices(role)["value"] for role in ("camera", "motion")]
+        return report.final_cost, report.steps, values
+
+    serial = [outcome(dynslam.solve(graph)) for graph in graphs]
+    for _ in range(3):
+        concurrent = [None] * len(graphs)
+
+        def run(i):
+            concurrent[i] = outcome(dynslam.solve(graphs[i]))
+
+        threads = [threading.Thread(target=run, args=(i,)) for i in range(len(graphs))]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        for (cost, steps, values), (cost2, steps2, values2) in zip(serial, concurrent):
+            assert (cost, steps) == (cost2, steps2)
+            assert all(np.array_equal(a, b) for a, b in zip(values, values2))

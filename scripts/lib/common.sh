@@ -8,7 +8,7 @@ DYNSLAM_JOBS="${DYNSLAM_JOBS:-2}"
 # Every package dynslam needs to build, test and plot (docs/DEPENDENCIES.md says why).
 DYNSLAM_PACKAGES=(
   cmake g++ make
-  libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-serial libgoogle-glog-dev libgflags-dev
+  libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
   python3 python3-matplotlib locales
   pybind11-dev python3-dev python3-numpy python3-pytest
