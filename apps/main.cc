@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "huge_page_heap.h"
 #include "inline_openmp_regions.h"
+#include "version.h"
 
 namespace {
 
@@ -30,7 +31,8 @@ constexpr Command kCommands[] = {
 };
 
 void PrintUsage(std::ostream& out) {
-  out << "usage: dynslam <command> [options]   (dynslam <command> --help for details)\n\n"
+  out << "usage: dynslam <command> [options]   (dynslam <command> --help for details)\n"
+      << "       dynslam --version\n\n"
       << "Dynamic SLAM back ends on Ceres Solver.\n\ncommands:\n";
   for (const Command& command : kCommands) {
     out << "  " << command.name << "\n      " << command.summary << "\n";
@@ -57,6 +59,10 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     PrintUsage(std::cerr);
     return dynslam::cli::kExitBadInput;
+  }
+  if (std::strcmp(argv[1], "--version") == 0) {
+    std::cout << "dynslam " << DYNSLAM_VERSION << " (git " << DYNSLAM_GIT_COMMIT << ")\n";
+    return dynslam::cli::kExitOk;
   }
   if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
     PrintUsage(std::cout);

@@ -59,6 +59,7 @@ int RunSolve(int argc, char** argv) {
   bool skip_unknown = false;
   bool ceres_report = false;
   bool repair_information = false;
+  bool check_options = false;
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
                    "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).\n"
@@ -76,18 +77,22 @@ int RunSolve(int argc, char** argv) {
                  "with eigenvalues >= 1e-9 x the largest (each repaired line is reported)");
   parser.AddFlag("ceres-report", &ceres_report,
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
+  parser.AddFlag("check-options", &check_options,
+                 "check the other options and exit (0, or 2 naming the problem) without reading "
+                 "GRAPH or writing anything (what a sweep does before it starts)");
   SolverFlags solver_flags(&parser);
   CompatFlags compat(&parser);
   ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   if (ReportedProblem(compat.Finish())) return kExitBadInput;
   if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
+  SolverOptions options;
+  if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
+  if (check_options) return kExitOk;
   if (out_dir.empty()) {
     std::cerr << "error: --out DIR is required\n";
     return kExitBadInput;
   }
-  SolverOptions options;
-  if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
   PrintProgressAfterOneSecond(&options);
   StopOnSignals(&options);
 

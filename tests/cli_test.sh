@@ -36,6 +36,12 @@ expect_output() {  # description pattern
 check "no command" 2 "$dynslam"
 check "top-level help" 0 "$dynslam" --help
 check "unknown command" 2 "$dynslam" frobnicate
+check "--version" 0 "$dynslam" --version
+expect_output "--version names the version and the commit" "^dynslam [0-9][0-9.]* (git [0-9a-f]"
+check "--check-options of good options" 0 "$dynslam" solve - --check-options --tolerances tight --max-iterations 5
+check "--check-options of a bad value" 2 "$dynslam" solve - --check-options --minimizer newton
+expect_output "--check-options names the option" "minimizer"
+check "--check-options of a bad combination" 2 "$dynslam" solve - --check-options --tolerances tight --extrapolation on
 for command in solve build compare metrics verify; do
   check "$command --help" 0 "$dynslam" "$command" --help
   expect_output "$command --help lists defaults" "default:"
