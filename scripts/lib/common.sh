@@ -12,6 +12,7 @@ DYNSLAM_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
   python3 python3-matplotlib locales
   pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-distributed python3-scipy
 )
 
 log() { printf '[%s] %s\n' "$(basename "$0")" "$*" >&2; }

@@ -1,0 +1,58 @@
+"""DIR/results.sqlite: one row per cell, written by the sweep's client alone (docs/SWEEPS.md).
+
+A cell's row is replaced, never added twice, so a cell that Dask ran twice is recorded once.
+Each row is committed as it arrives: a stopped sweep keeps every finished cell.
+"""
+import csv
+import sqlite3
+
+from ._sweep_cells import METRIC_COLUMNS
+
+KEY = ("scene", "seed", "formulation", "options")
+COLUMNS = [
+    ("scene", "TEXT NOT NULL"), ("seed", "INTEGER NOT NULL"), ("formulation", "TEXT NOT NULL"),
+    ("options", "TEXT NOT NULL"), ("status", "TEXT NOT NULL"), ("termination", "TEXT"),
+    ("steps", "INTEGER"), ("iterations", "INTEGER"), ("initial_cost", "REAL"),
+    ("final_cost", "REAL"), ("solve_time_s", "REAL"), ("linear_solve_time_s", "REAL"),
+    ("wall_s", "REAL"),
+] + [(name, "REAL") for name in METRIC_COLUMNS] + [
+    ("cell_dir", "TEXT"), ("host", "TEXT"), ("version", "TEXT"), ("error", "TEXT"),
+]
+NAMES = [name for name, _ in COLUMNS]
+
+
+class Results:
+    def __init__(self, path):
+        self.connection = sqlite3.connect(path)
+        columns = ", ".join(f"{name} {kind}" for name, kind in COLUMNS)
+        self.connection.execute(
+            f"CREATE TABLE IF NOT EXISTS cells ({columns}, PRIMARY KEY ({', '.join(KEY)}))")
+        self.connection.commit()
+
+    def close(self):
+        self.connection.close()
+
+    def finished(self):
+        """The keys (scene, seed, formulation, options) of the cells whose status is 'ok'."""
+        rows = self.connection.execute(
+            f"SELECT {', '.join(KEY)} FROM cells WHERE status = 'ok'")
+        return set(rows)
+
+    def record(self, row):
+        values = [row.get(name) for name in NAMES]
+        self.connection.execute(
+            f"INSERT OR REPLACE INTO cells ({', '.join(NAMES)}) "
+            f"VALUES ({', '.join('?' * len(NAMES))})", values)
+        self.connection.commit()
+
+    def rows(self):
+        """Every row as a dict, in key order."""
+        cursor = self.connection.execute(
+            f"SELECT {', '.join(NAMES)} FROM cells ORDER BY {', '.join(KEY)}")
+        return [dict(zip(NAMES, values)) for values in cursor]
+
+    def write_csv(self, path):
+        with open(path, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=NAMES)
+            writer.writeheader()
+            writer.writerows(self.rows())

@@ -1,0 +1,205 @@
+"""A sweep file (TOML) read and checked before any work starts (docs/SWEEPS.md).
+
+Every problem is a SweepFileError naming the file and the key; nothing is run for a bad file.
+"""
+import dataclasses
+import os
+import subprocess
+import tomllib
+
+from . import _sweep_tools
+
+FORMULATIONS = ("wc", "oc_a", "oc_b", "oc_c", "hy")
+DENSITIES = ("frontend", "paper")
+PAPER_SEQUENCES = ("0000", "0001", "0002", "0003", "0004", "0005", "0006", "0018", "0020")
+KNOWN_KEYS = ("scenes", "frames", "density", "seeds", "formulations", "options", "kitti")
+# `dynslam solve` options a sweep sets itself for every cell.
+RESERVED_OPTIONS = ("out", "gt", "check_options", "help")
+
+
+class SweepFileError(Exception):
+    """A sweep file that cannot be run: `str(error)` is 'FILE: KEY: problem'."""
+
+    def __init__(self, path, key, problem):
+        super().__init__(f"{path}: {key}: {problem}" if key else f"{path}: {problem}")
+        self.path, self.key, self.problem = path, key, problem
+
+
+@dataclasses.dataclass(frozen=True)
+class Cell:
+    """One solve of the sweep: a formulation of one simulated scene under one option set."""
+    scene: str
+    seed: int
+    formulation: str
+    options: str  # the option set's name
+
+    @property
+    def scene_dir(self):
+        return os.path.join("cells", f"{self.scene}_s{self.seed}")
+
+    @property
+    def cell_dir(self):
+        """Relative to the sweep's directory; the option set 'default' adds no suffix."""
+        name = self.formulation if self.options == "default" else f"{self.formulation}_{self.options}"
+        return os.path.join(self.scene_dir, name)
+
+
+@dataclasses.dataclass
+class Sweep:
+    path: str
+    scenes: list
+    frames: str  # "A:B" or "" for every frame
+    density: str
+    seeds: list
+    formulations: list
+    options: dict  # name -> ["--flag=value", ...] for `dynslam solve`
+    kitti: str  # absolute path of the KITTI Tracking data
+
+    def cells(self):
+        return [Cell(scene, seed, formulation, name)
+                for scene in self.scenes for seed in self.seeds
+                for name in self.options for formulation in self.formulations]
+
+
+def load(path, cli=None, kitti=None):
+    """Reads and checks the sweep file at `path`; `cli` is the dynslam command that checks the
+    option sets (found by _sweep_tools.find_cli when None); `kitti` overrides the data."""
+    try:
+        with open(path, "rb") as f:
+            table = tomllib.load(f)
+    except OSError as e:
+        raise SweepFileError(path, "", e.strerror or str(e)) from None
+    except tomllib.TOMLDecodeError as e:
+        raise SweepFileError(path, "", f"not TOML: {e}") from None
+    for key in table:
+        if key not in KNOWN_KEYS:
+            raise SweepFileError(path, key, f"unknown key (known: {', '.join(KNOWN_KEYS)})")
+    for key in ("scenes", "seeds", "formulations"):
+        if key not in table:
+            raise SweepFileError(path, key, "missing")
+    data = kitti or table.get("kitti") or _sweep_tools.embedded_kitti()
+    if data is not None and not os.path.isabs(data):
+        data = os.path.join(os.path.dirname(os.path.abspath(path)), data)
+    sweep = Sweep(
+        path=path,
+        scenes=_scenes(path, table["scenes"], data),
+        frames=_frames(path, table.get("frames", "")),
+        density=_choice(path, "density", table.get("density", "frontend"), DENSITIES),
+        seeds=_seeds(path, table["seeds"]),
+        formulations=_formulations(path, table["formulations"]),
+        options={},
+        kitti=os.path.abspath(data) if data else "",
+    )
+    if sweep.density == "paper":
+        for scene in sweep.scenes:
+            if scene not in PAPER_SEQUENCES:
+                raise SweepFileError(path, "density", f"'paper' is the density of the paper's "
+                                     f"sequences ({', '.join(PAPER_SEQUENCES)}), not of {scene!r}")
+    cli = cli or _sweep_tools.find_cli()
+    sweep.options = _option_sets(path, table.get("options", {"default": {}}), cli)
+    return sweep
+
+
+def _list_of_strings(path, key, value):
+    if not isinstance(value, list) or not value:
+        raise SweepFileError(path, key, "must be a non-empty list")
+    for item in value:
+        if not isinstance(item, str):
+            raise SweepFileError(path, key, f"{item!r} is not a string")
+    if len(set(value)) != len(value):
+        raise SweepFileError(path, key, "lists an entry twice")
+    return list(value)
+
+
+def _scenes(path, value, kitti):
+    scenes = _list_of_strings(path, "scenes", value)
+    for scene in scenes:
+        if scene == "synthetic":
+            continue
+        if kitti is None:
+            raise SweepFileError(path, "kitti", "no KITTI Tracking data found: give kitti = DIR")
+        if not os.path.isfile(os.path.join(kitti, "label_02", scene + ".txt")):
+            raise SweepFileError(path, "scenes",
+                                 f"unknown sequence {scene!r} (no {kitti}/label_02/{scene}.txt)")
+    return scenes
+
+
+def _frames(path, value):
+    if not isinstance(value, str):
+        raise SweepFileError(path, "frames", "must be a string 'A:B'")
+    if value == "":
+        return ""
+    first, sep, last = value.partition(":")
+    if not sep or not all(part == "" or part.isdigit() for part in (first, last)) or (
+            first and last and int(first) >= int(last)):
+        raise SweepFileError(path, "frames", f"{value!r} is not a frame range 'A:B' (A < B)")
+    return value
+
+
+def _choice(path, key, value, choices):
+    if value not in choices:
+        raise SweepFileError(path, key, f"{value!r} is not one of {', '.join(choices)}")
+    return value
+
+
+def _seeds(path, value):
+    if isinstance(value, str):
+        first, sep, last = value.partition(":")
+        if not sep or not first.isdigit() or not last.isdigit() or int(first) >= int(last):
+            raise SweepFileError(path, "seeds", f"{value!r} is not a range 'A:B' (A < B)")
+        return list(range(int(first), int(last)))
+    if not isinstance(value, list) or not value:
+        raise SweepFileError(path, "seeds", "must be a non-empty list of integers or a range 'A:B'")
+    for seed in value:
+        if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
+            raise SweepFileError(path, "seeds", f"{seed!r} is not a non-negative integer")
+    if len(set(value)) != len(value):
+        raise SweepFileError(path, "seeds", "lists a seed twice")
+    return list(value)
+
+
+def _formulations(path, value):
+    formulations = _list_of_strings(path, "formulations", value)
+    for formulation in formulations:
+        _choice(path, "formulations", formulation, FORMULATIONS)
+    return formulations
+
+
+def option_flags(options):
+    """A TOML table of `dynslam solve` options -> its flags: `max_iterations = 5` is
+    `--max-iterations=5`, `fix_first = true` is `--fix-first` (false: left out)."""
+    flags = []
+    for key, value in options.items():
+        flag = "--" + key.replace("_", "-")
+        if isinstance(value, bool):
+            if value:
+                flags.append(flag)
+        else:
+            flags.append(f"{flag}={value}")
+    return flags
+
+
+def _option_sets(path, value, cli):
+    if not isinstance(value, dict) or not value:
+        raise SweepFileError(path, "options", "must be tables [options.NAME] of solve options")
+    sets = {}
+    for name, options in value.items():
+        key = f"options.{name}"
+        if not isinstance(options, dict):
+            raise SweepFileError(path, key, "must be a table of `dynslam solve` options")
+        if not name.replace("_", "").replace("-", "").isalnum():
+            raise SweepFileError(path, key, "a set's name is letters, digits, '_' and '-'")
+        for option, setting in options.items():
+            if option.replace("-", "_") in RESERVED_OPTIONS:
+                raise SweepFileError(path, f"{key}.{option}", "is set by the sweep itself")
+            if not isinstance(setting, (bool, int, float, str)):
+                raise SweepFileError(path, f"{key}.{option}", "must be a string, number or boolean")
+        flags = option_flags(options)
+        check = subprocess.run([cli, "solve", "-", "--check-options", *flags],
+                               capture_output=True, text=True)
+        if check.returncode != 0:
+            problem = check.stderr.strip().splitlines()[0] if check.stderr.strip() else (
+                f"dynslam solve exited {check.returncode}")
+            raise SweepFileError(path, key, problem.removeprefix("error: "))
+        sets[name] = flags
+    return sets

@@ -1,0 +1,107 @@
+"""The statistics of a sweep's report (docs/SWEEPS.md): per scene, option set and formulation the
+mean, standard deviation and 95 % confidence interval over seeds; each formulation against wc,
+paired by scene and seed, by the median difference and a Wilcoxon signed-rank test,
+Holm-corrected over the comparisons made."""
+import math
+
+import numpy as np
+from scipy import stats
+
+# The metrics summarised and compared: (column, what it is).
+METRICS = [
+    ("camera_mean_rot_deg", "camera RPE rotation (deg)"),
+    ("camera_mean_trans_m", "camera RPE translation (m)"),
+    ("object_motion_mean_rot_deg", "object motion rotation (deg)"),
+    ("object_motion_mean_trans_m", "object motion translation (m)"),
+    ("object_pose_mean_rot_deg", "object pose rotation (deg)"),
+    ("object_pose_mean_trans_m", "object pose translation (m)"),
+    ("steps", "steps (linear solves)"),
+    ("solve_time_s", "solve time (s)"),
+]
+ALPHA = 0.05
+
+
+def describe(values):
+    """n, mean, sample standard deviation and the two-sided 95 % t interval of the mean (the
+    interval and deviation are NaN for fewer than two values)."""
+    x = np.asarray([v for v in values if v is not None], dtype=float)
+    n = len(x)
+    if n == 0:
+        return {"n": 0, "mean": math.nan, "sd": math.nan, "ci_low": math.nan, "ci_high": math.nan}
+    mean = float(np.mean(x))
+    if n < 2:
+        return {"n": 1, "mean": mean, "sd": math.nan, "ci_low": math.nan, "ci_high": math.nan}
+    sd = float(np.std(x, ddof=1))
+    half = float(stats.t.ppf(1 - ALPHA / 2, n - 1)) * sd / math.sqrt(n)
+    return {"n": n, "mean": mean, "sd": sd, "ci_low": mean - half, "ci_high": mean + half}
+
+
+def wilcoxon(differences):
+    """Two-sided Wilcoxon signed-rank p-value of paired differences; 1.0 when every difference
+    is zero (nothing to test: a formulation against itself) and NaN for no pairs."""
+    d = np.asarray(differences, dtype=float)
+    if len(d) == 0:
+        return math.nan
+    if not np.any(d != 0):
+        return 1.0
+    return float(stats.wilcoxon(d, zero_method="wilcox", alternative="two-sided").pvalue)
+
+
+def holm(p_values):
+    """Holm's step-down adjustment of p-values (NaN stays NaN), in the input's order."""
+    indexed = [(p, i) for i, p in enumerate(p_values) if not math.isnan(p)]
+    indexed.sort()
+    adjusted = [math.nan] * len(p_values)
+    running = 0.0
+    m = len(indexed)
+    for rank, (p, i) in enumerate(indexed):
+        running = max(running, min(1.0, (m - rank) * p))
+        adjusted[i] = running
+    return adjusted
+
+
+def summarise(rows):
+    """One dict per (scene, options, formulation, metric) over the seeds of finished cells."""
+    groups = {}
+    for row in rows:
+        if row["status"] == "ok":
+            groups.setdefault((row["scene"], row["options"], row["formulation"]), []).append(row)
+    out = []
+    for (scene, options, formulation), cells in sorted(groups.items()):
+        for metric, _ in METRICS:
+            out.append({"scene": scene, "options": options, "formulation": formulation,
+                        "metric": metric, **describe([c[metric] for c in cells])})
+    return out
+
+
+def paired(rows, baseline="wc"):
+    """Each formulation against `baseline` per option set and metric, paired by scene and seed
+    over every scene: median difference (formulation − baseline), Wilcoxon p, Holm-adjusted p
+    over all the comparisons returned, and whether that is below 0.05."""
+    by_key = {}
+    for row in rows:
+        if row["status"] == "ok":
+            by_key[(row["options"], row["formulation"], row["scene"], row["seed"])] = row
+    comparisons = []
+    option_sets = sorted({k[0] for k in by_key})
+    formulations = sorted({k[1] for k in by_key} - {baseline})
+    for options in option_sets:
+        for formulation in formulations:
+            for metric, _ in METRICS:
+                differences = []
+                for (o, f, scene, seed), row in by_key.items():
+                    base = by_key.get((o, baseline, scene, seed))
+                    if o != options or f != formulation or base is None:
+                        continue
+                    if row[metric] is None or base[metric] is None:
+                        continue
+                    differences.append(row[metric] - base[metric])
+                comparisons.append({
+                    "options": options, "formulation": formulation, "baseline": baseline,
+                    "metric": metric, "pairs": len(differences),
+                    "median_difference": float(np.median(differences)) if differences else math.nan,
+                    "p": wilcoxon(differences)})
+    for comparison, adjusted in zip(comparisons, holm([c["p"] for c in comparisons])):
+        comparison["p_holm"] = adjusted
+        comparison["significant"] = bool(adjusted < ALPHA) if not math.isnan(adjusted) else False
+    return comparisons

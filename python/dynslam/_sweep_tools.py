@@ -1,0 +1,33 @@
+"""Where a sweep finds the dynslam command and the embedded KITTI Tracking data."""
+import os
+import shutil
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__))
+
+
+class ToolNotFound(Exception):
+    pass
+
+
+def find_cli():
+    """The `dynslam` command: $DYNSLAM_CLI, the one installed beside this package
+    (scripts/install_python_module), the build tree's, or the one on PATH."""
+    candidates = [os.environ.get("DYNSLAM_CLI"),
+                  os.path.join(_PACKAGE, "bin", "dynslam"),
+                  os.path.join(_PACKAGE, "..", "..", "apps", "dynslam"),  # build/<type>/python/
+                  shutil.which("dynslam")]
+    for candidate in candidates:
+        if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return os.path.abspath(candidate)
+    raise ToolNotFound("no dynslam command: set DYNSLAM_CLI, or run scripts/install_python_module")
+
+
+def embedded_kitti():
+    """The KITTI Tracking data shipped with dynslam ($DYNSLAM_KITTI first), or None."""
+    candidates = [os.environ.get("DYNSLAM_KITTI"),
+                  os.path.join(_PACKAGE, "data", "kitti_tracking"),
+                  os.path.join(_PACKAGE, "..", "..", "..", "..", "data", "kitti_tracking")]
+    for candidate in candidates:
+        if candidate and os.path.isdir(os.path.join(candidate, "label_02")):
+            return os.path.abspath(candidate)
+    return None

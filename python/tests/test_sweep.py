@@ -1,0 +1,218 @@
+"""`python3 -m dynslam.sweep` (issue 41): bad sweep files, the statistics against SciPy, and real
+Dask clusters — a scheduler and two workers on 127.0.0.1, one of them killed mid-sweep — and an
+interrupted local sweep. Needs PYTHONPATH=<build>/python and DYNSLAM_CLI (as ctest sets them)."""
+import json
+import math
+import os
+import signal
+import socket
+import sqlite3
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from dynslam import _sweep_stats as st
+
+CLI = os.environ.get("DYNSLAM_CLI")
+SMALL_SWEEP = """
+scenes = ["synthetic", "0003"]
+frames = "0:30"
+seeds = [1, 2, 3]
+formulations = ["wc", "oc_b"]
+[options.default]
+"""
+
+
+def sweep_command(*args):
+    return [sys.executable, "-m", "dynslam.sweep", *args]
+
+
+def run_sweep(*args, **kwargs):
+    return subprocess.run(sweep_command(*args), capture_output=True, text=True, **kwargs)
+
+
+def write(path, text):
+    path.write_text(text)
+    return str(path)
+
+
+def cell_rows(out):
+    with sqlite3.connect(os.path.join(out, "results.sqlite")) as connection:
+        connection.row_factory = sqlite3.Row
+        return [dict(r) for r in connection.execute("SELECT * FROM cells")]
+
+
+# --- bad sweep files: one error naming the file and the key, exit 2, nothing run ---
+
+@pytest.mark.parametrize("text, key", [
+    ("colour = 'red'\n" + SMALL_SWEEP, "colour"),
+    (SMALL_SWEEP.replace('"oc_b"', '"oc_z"'), "formulations"),
+    (SMALL_SWEEP.replace('"0003"', '"0099"'), "scenes"),
+    (SMALL_SWEEP + "[options.bad]\nmax_iterations = 'many'\n", "options.bad"),
+    (SMALL_SWEEP + "[options.bad]\nminimizer = 'newton'\n", "options.bad"),
+    (SMALL_SWEEP + "[options.bad]\nno_such_option = 1\n", "options.bad"),
+    (SMALL_SWEEP.replace("seeds = [1, 2, 3]", "seeds = []"), "seeds"),
+    (SMALL_SWEEP.replace("seeds = [1, 2, 3]", 'seeds = "5:2"'), "seeds"),
+    (SMALL_SWEEP.replace('frames = "0:30"', 'frames = "thirty"'), "frames"),
+    (SMALL_SWEEP.replace('frames = "0:30"', 'density = "paper"'), "density"),
+    (SMALL_SWEEP + "[options.bad]\nout = 'elsewhere'\n", "options.bad.out"),
+])
+def test_bad_sweep_file_is_one_error_and_runs_nothing(tmp_path, text, key):
+    path = write(tmp_path / "bad.toml", text)
+    out = tmp_path / "out"
+    result = run_sweep(path, "--out", str(out))
+    assert result.returncode == 2, result.stderr
+    assert result.stderr.startswith(f"error: {path}: {key}: "), result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert not out.exists()
+
+
+def test_missing_and_unreadable_sweep_files(tmp_path):
+    result = run_sweep(str(tmp_path / "absent.toml"), "--out", str(tmp_path / "out"))
+    assert result.returncode == 2 and "absent.toml" in result.stderr
+    path = write(tmp_path / "broken.toml", "scenes = [\n")
+    result = run_sweep(path, "--out", str(tmp_path / "out"))
+    assert result.returncode == 2 and "not TOML" in result.stderr
+
+
+# --- statistics against SciPy on fixed numbers ---
+
+def test_mean_deviation_and_interval_match_scipy():
+    x = [0.12, 0.15, 0.11, 0.19, 0.14, 0.13]
+    d = st.describe(x)
+    low, high = stats.t.interval(0.95, len(x) - 1, loc=np.mean(x), scale=stats.sem(x))
+    assert d["n"] == 6
+    assert d["mean"] == pytest.approx(np.mean(x), rel=1e-15)
+    assert d["sd"] == pytest.approx(np.std(x, ddof=1), rel=1e-15)
+    assert (d["ci_low"], d["ci_high"]) == (pytest.approx(low, rel=1e-12), pytest.approx(high, rel=1e-12))
+    assert math.isnan(st.describe([1.0])["ci_low"]) and st.describe([])["n"] == 0
+
+
+def test_wilcoxon_matches_scipy_and_holm_matches_its_definition():
+    a = [1.3, 2.1, 0.4, 5.5, 3.2, 2.2, 0.9, 1.8]
+    b = [1.1, 2.5, 0.1, 4.9, 2.0, 2.0, 0.3, 1.0]
+    differences = np.subtract(a, b)
+    assert st.wilcoxon(differences) == pytest.approx(stats.wilcoxon(a, b).pvalue, rel=1e-12)
+    # Holm: sort p ascending, multiply the i-th (from 0) by m − i, keep the running maximum.
+    assert st.holm([0.01, 0.04, 0.03]) == pytest.approx([0.03, 0.06, 0.06])
+    assert st.holm([0.5, math.nan, 0.01]) == pytest.approx([0.5, math.nan, 0.02], nan_ok=True)
+    assert st.holm([0.9, 0.8]) == pytest.approx([1.0, 1.0])  # 2 × 0.8 capped at 1
+
+
+def test_a_formulation_against_itself_is_never_significant():
+    rows = []
+    for seed in range(10):
+        for formulation in ("wc", "wc_again"):
+            row = {"status": "ok", "scene": "s", "seed": seed, "options": "default",
+                   "formulation": formulation}
+            row.update({metric: 0.1 * seed + 1 for metric, _ in st.METRICS})
+            rows.append(row)
+    comparisons = st.paired(rows)
+    assert comparisons and all(c["p"] == 1.0 and not c["significant"] for c in comparisons)
+    assert all(c["median_difference"] == 0 and c["pairs"] == 10 for c in comparisons)
+
+
+# --- real Dask clusters ---
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def cluster():
+    """A `dask scheduler` and two `dask worker` processes (no nanny, so that killing one kills
+    it) on 127.0.0.1; yields (address, workers) and stops them all."""
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
+    scheduler = subprocess.Popen(dask + ["--host", "127.0.0.1", "--port", str(port),
+                                         "--no-dashboard"],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    workers = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                                 "--nthreads", "1", "--no-nanny", "--no-dashboard",
+                                 "--host", "127.0.0.1"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+               for _ in range(2)]
+    from dask.distributed import Client
+    with Client(address, timeout=60) as client:
+        client.wait_for_workers(2, timeout=60)
+    yield address, workers
+    for process in workers + [scheduler]:
+        process.kill()
+        process.wait()
+
+
+def direct_solve(out, row, tmp_path):
+    """`dynslam solve` of a cell's graph.g2o, as a user would run it: its summary.json."""
+    cell = os.path.join(out, row["cell_dir"])
+    frontend = os.path.join(os.path.dirname(cell), "frontend.gt.txt")
+    direct = tmp_path / "direct" / row["cell_dir"]
+    subprocess.run([CLI, "solve", os.path.join(cell, "graph.g2o"), "--gt", frontend,
+                    "--out", str(direct)], check=True, capture_output=True)
+    with open(direct / "summary.json") as f:
+        return json.load(f)
+
+
+def test_sweep_on_a_dask_cluster_equals_direct_solves(tmp_path, cluster):
+    address, _ = cluster
+    out = str(tmp_path / "out")
+    result = run_sweep(write(tmp_path / "s.toml", SMALL_SWEEP), "--out", out,
+                       "--scheduler", address, timeout=600)
+    assert result.returncode == 0, result.stderr
+    rows = cell_rows(out)
+    assert len(rows) == 12 and all(r["status"] == "ok" for r in rows)
+    for row in rows:
+        summary = direct_solve(out, row, tmp_path)
+        assert row["final_cost"] == pytest.approx(summary["final_cost"], rel=1e-12)
+        assert row["steps"] == summary["steps"]
+        for family in ("camera", "object_motion", "object_pose"):
+            for key in ("mean_rot_deg", "mean_trans_m"):
+                assert row[f"{family}_{key}"] == pytest.approx(
+                    summary["metrics"][family][key], rel=1e-12)
+    assert os.path.isfile(os.path.join(out, "results.csv"))
+    assert os.path.isfile(os.path.join(out, "report.md"))
+
+
+def test_a_killed_worker_costs_only_a_rerun_of_its_cell(tmp_path, cluster):
+    address, workers = cluster
+    out = str(tmp_path / "out")
+    sweep = subprocess.Popen(sweep_command(write(tmp_path / "s.toml", SMALL_SWEEP), "--out", out,
+                                           "--scheduler", address),
+                             stderr=subprocess.PIPE, text=True)
+    for line in sweep.stderr:  # the first finished cell: the others are queued or running
+        if line.startswith("cell "):
+            workers[0].send_signal(signal.SIGKILL)
+            break
+    sweep.stderr.read()
+    assert sweep.wait(timeout=600) == 0
+    rows = cell_rows(out)
+    keys = {(r["scene"], r["seed"], r["formulation"], r["options"]) for r in rows}
+    assert len(rows) == len(keys) == 12 and all(r["status"] == "ok" for r in rows)
+    again = run_sweep(str(tmp_path / "s.toml"), "--out", out, "--scheduler", address, timeout=120)
+    assert again.returncode == 0, again.stderr
+    assert "12 finished before, 0 to run" in again.stderr
+
+
+def test_an_interrupted_local_sweep_keeps_its_finished_cells(tmp_path):
+    path = write(tmp_path / "s.toml", SMALL_SWEEP)
+    out = str(tmp_path / "out")
+    sweep = subprocess.Popen(sweep_command(path, "--out", out, "--workers", "1"),
+                             stderr=subprocess.PIPE, text=True)
+    for line in sweep.stderr:
+        if line.startswith("cell "):
+            sweep.send_signal(signal.SIGINT)
+            break
+    rest = sweep.stderr.read()
+    assert sweep.wait(timeout=120) == 130, rest
+    finished = [r for r in cell_rows(out) if r["status"] == "ok"]
+    assert 1 <= len(finished) < 12
+    again = run_sweep(path, "--out", out, "--workers", "1", timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert f"{len(finished)} finished before, {12 - len(finished)} to run" in again.stderr
+    assert len(cell_rows(out)) == 12
