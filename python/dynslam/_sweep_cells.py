@@ -35,9 +35,9 @@ def _problem(result, what):
 
 
 def simulate(out_dir, scene, seed, frames, density, kitti, cli):
-    """Writes DIR/cells/<scene>_s<seed>/frontend.{g2o,gt.txt} unless both are there; returns
-    their paths, or raises RuntimeError with the command's message. `cli` None: this worker's
-    own dynslam command (_sweep_tools.find_cli)."""
+    """Writes DIR/cells/<scene>_s<seed>/frontend.{g2o,gt.txt} (and simulate.txt, the command's
+    statistics) unless both are there; returns their paths, or raises RuntimeError with the
+    command's message. `cli` None: this worker's own dynslam command (_sweep_tools.find_cli)."""
     cli = cli or find_cli()
     os.makedirs(out_dir, exist_ok=True)
     prefix = os.path.join(out_dir, "frontend")
@@ -53,6 +53,8 @@ def simulate(out_dir, scene, seed, frames, density, kitti, cli):
     result = _run(command)
     if result.returncode != 0:
         raise RuntimeError(_problem(result, "dynslam simulate"))
+    with open(os.path.join(out_dir, "simulate.txt"), "w") as f:  # its statistics
+        f.write(result.stdout)
     # The ground truth first: the .g2o's presence marks a complete pair.
     os.replace(temporary + ".gt.txt", prefix + ".gt.txt")
     os.replace(temporary + ".g2o", prefix + ".g2o")
