@@ -9,6 +9,7 @@
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
+#include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
@@ -47,7 +48,24 @@ void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
               r.time_linear_solver_s);
   for (const std::string& warning : outputs.warnings) std::printf("warning: %s\n", warning.c_str());
   for (const std::string& warning : r.warnings) std::printf("warning: %s\n", warning.c_str());
+  if (const CovarianceReport* c = outputs.covariance; c != nullptr && c->weak_directions.empty()) {
+    std::printf("covariances: %zu variables in %.3f s (covariances.csv)\n", c->marginals.size(),
+                c->time_s);
+  }
   std::printf("outputs: %s\n", out_dir.c_str());
+}
+
+// Why the covariances could not be computed (the other outputs are written all the same).
+std::optional<std::string> CovarianceProblem(const Expected<CovarianceReport>& covariance,
+                                             const Graph& graph) {
+  if (!covariance.ok()) return covariance.error().ToString();
+  const std::vector<WeakDirection>& weak = covariance->weak_directions;
+  if (weak.empty()) return std::nullopt;
+  const WeakDirection& first = weak.front();
+  return "the information matrix is singular along " + std::to_string(weak.size()) +
+         " directions (weakly determined variables; first: vertex " + std::to_string(first.id) +
+         " " + ComponentName(graph.vertices.at(first.id).type, first.component) +
+         "): no covariances.csv; summary.json lists them";
 }
 
 }  // namespace
@@ -60,6 +78,7 @@ int RunSolve(int argc, char** argv) {
   bool ceres_report = false;
   bool repair_information = false;
   bool check_options = false;
+  std::string covariance_kinds;
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
                    "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).\n"
@@ -77,6 +96,11 @@ int RunSolve(int argc, char** argv) {
                  "with eigenvalues >= 1e-9 x the largest (each repaired line is reported)");
   parser.AddFlag("ceres-report", &ceres_report,
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
+  parser.AddString("covariance", &covariance_kinds,
+                   "also write covariances.csv: the marginal covariance of every variable of "
+                   "these kinds at the solution (cameras, motions, object_poses, points, all; "
+                   "docs/COVARIANCE.md)",
+                   "KIND,...");
   parser.AddFlag("check-options", &check_options,
                  "check the other options and exit (0, or 2 naming the problem) without reading "
                  "GRAPH or writing anything (what a sweep does before it starts)");
@@ -88,6 +112,13 @@ int RunSolve(int argc, char** argv) {
   if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
   SolverOptions options;
   if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
+  std::vector<CovarianceKind> kinds;
+  std::string bad_kind;
+  if (parser.Given("covariance") && !ParseCovarianceKinds(covariance_kinds, &kinds, &bad_kind)) {
+    std::cerr << "error: --covariance: unknown kind '" << bad_kind
+              << "' (cameras, motions, object_poses, points, all)\n";
+    return kExitBadInput;
+  }
   if (check_options) return kExitOk;
   if (out_dir.empty()) {
     std::cerr << "error: --out DIR is required\n";
@@ -138,6 +169,16 @@ int RunSolve(int argc, char** argv) {
     outputs.ground_truth = &*ground_truth;
     outputs.metrics = ComputeMetrics(*graph, *ground_truth);
   }
+  std::optional<std::string> covariance_problem;
+  Expected<CovarianceReport> covariance = Error{};
+  if (!kinds.empty() && report->usable) {
+    covariance = ComputeCovariances(*graph, *report, VerticesOfKinds(*graph, kinds));
+    covariance_problem = CovarianceProblem(covariance, *graph);
+    if (covariance.ok()) {
+      outputs.covariance = &*covariance;
+      outputs.covariance_kinds = covariance_kinds;
+    }
+  }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
     std::cerr << "error: " << status.error().ToString() << "\n";
     return kExitFailed;
@@ -156,6 +197,10 @@ int RunSolve(int argc, char** argv) {
   }
   if (!report->usable) {
     std::cerr << "error: the solve failed: " << report->termination_detail << "\n";
+    return kExitFailed;
+  }
+  if (covariance_problem) {
+    std::cerr << "error: --covariance: " << *covariance_problem << "\n";
     return kExitFailed;
   }
   return ExitCodeAfterStopSignal(kExitOk);

@@ -61,6 +61,39 @@ std::string ConvergenceCsv(const SolveReport& report) {
   return text;
 }
 
+std::string CovariancesCsv(const CovarianceReport& covariance) {
+  std::string out = "id,role,dim,upper_triangle\n";
+  for (const MarginalCovariance& m : covariance.marginals) {
+    const int dim = static_cast<int>(m.covariance.rows());
+    out += std::to_string(m.id) + "," + RoleName(m.role) + "," + std::to_string(dim);
+    for (int r = 0; r < dim; ++r) {
+      for (int c = r; c < dim; ++c) {
+        out += ',';
+        AppendNumber(&out, m.covariance(r, c));
+      }
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+JsonValue CovarianceJson(const SolveOutputs& outputs) {
+  const CovarianceReport& c = *outputs.covariance;
+  JsonValue weak = JsonValue::array();
+  for (const WeakDirection& w : c.weak_directions) {
+    weak.push_back({{"id", w.id},
+                    {"direction", ComponentName(outputs.solved->vertices.at(w.id).type,
+                                                w.component)}});
+  }
+  return {{"kinds", outputs.covariance_kinds},
+          {"variables", c.marginals.size()},
+          {"columns", c.columns},
+          {"time_s", c.time_s},
+          {"held_constant", c.held_constant},
+          {"weak_directions", std::move(weak)},
+          {"file", c.weak_directions.empty() ? "covariances.csv" : ""}};
+}
+
 std::vector<ObjectPoseRow> EstimatedObjectPoseRows(const SolveOutputs& outputs) {
   const GroundTruth none;  // object-centric poses need none; world-centric ones get none then
   return Rows(EstimatedObjectPoses(*outputs.solved,
@@ -172,6 +205,7 @@ std::string SummaryJson(const SolveOutputs& outputs) {
       {"solver", SolverJson(report.options_used)},
       {"warnings", std::move(warnings)}};
   if (outputs.metrics) summary["metrics"] = MetricsToJson(*outputs.metrics);
+  if (outputs.covariance) summary["covariance"] = CovarianceJson(outputs);
   return DumpJson(summary);
 }
 
@@ -205,6 +239,14 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"summary.json", SummaryJson(outputs) + "\n"},
   };
   if (Status s = WriteExportedTrajectories(dir, outputs); !s.ok()) return s;
+  const std::string covariances = (base / "covariances.csv").string();
+  if (outputs.covariance && outputs.covariance->weak_directions.empty()) {
+    if (Status s = WriteFileAtomically(covariances, CovariancesCsv(*outputs.covariance)); !s.ok()) {
+      return s;
+    }
+  } else if (Status s = RemoveIfPresent(covariances); !s.ok()) {  // not an earlier solve's
+    return s;
+  }
   for (const auto& [name, text] : files) {
     if (Status s = WriteFileAtomically((base / name).string(), text); !s.ok()) return s;
   }

@@ -197,6 +197,26 @@ else
   failed=$((failed + 1)); echo "FAIL: --compat dynosam:2 did not put Huber 1e-4 on hybrid_point edges"
 fi
 
+# Marginal covariances (docs/COVARIANCE.md): a row per requested variable; an unknown kind is a
+# usage error before any solve; a later solve without --covariance leaves no stale file.
+check "--covariance cameras,motions" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/cov" --covariance cameras,motions
+expect_output "--covariance says what it wrote" "covariances: .* variables"
+rows=$(($(wc -l <"$work/cov/covariances.csv") - 1))
+expected=$(($(wc -l <"$work/cov/cameras.csv") - 1 + $(wc -l <"$work/cov/motions.csv") - 1))
+if [ "$rows" -eq "$expected" ] && grep -q '"covariance"' "$work/cov/summary.json"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: covariances.csv has $rows rows, expected $expected (cameras + motions)"
+fi
+check "--covariance with an unknown kind" 2 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/cov" --covariance cameras,poses
+expect_output "the unknown kind is named" "unknown kind 'poses'"
+check "a solve without --covariance" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/cov" --max-iterations 3
+if [ ! -e "$work/cov/covariances.csv" ]; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: an earlier solve's covariances.csv was left beside a solve without --covariance"
+fi
+
 # The huge-page heap (apps/huge_page_heap.h) changes where blocks live, never what is computed.
 check "solve with the huge-page heap" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_on" --max-iterations 5
 check "solve without it" 0 env DYNSLAM_HUGE_PAGES=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_off" --max-iterations 5

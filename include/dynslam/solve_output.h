@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "dynslam/covariance.h"
 #include "dynslam/graph.h"
 #include "dynslam/metrics.h"
 #include "dynslam/pose.h"
@@ -37,13 +38,18 @@ struct SolveOutputs {
   // Trajectory files for evo (trajectory_export.h).
   std::vector<TrajectoryFormat> export_formats;
   double export_rate_hz = 10;  // KITTI Tracking's frame rate
+  // Marginal covariances (covariance.h), when asked for: covariances.csv and summary.json's
+  // "covariance"; `covariance_kinds` is the request as given ("cameras,motions").
+  const CovarianceReport* covariance = nullptr;
+  std::string covariance_kinds;
 };
 
 // summary.json's text (SPEC §4), without the trailing newline.
 std::string SummaryJson(const SolveOutputs& outputs);
 
-// Writes all files of SPEC §4 into `dir` (created when missing), and the requested trajectory
-// files; summary.json last.
+// Writes all files of SPEC §4 into `dir` (created when missing), the requested trajectory files
+// and covariances.csv (`id,role,dim,` then the upper triangle row by row, SPEC §1.3's tangent
+// order) when there are covariances; summary.json last.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 
 // Only the trajectory files of `outputs.export_formats` (none when empty), from `outputs.solved`
