@@ -177,6 +177,7 @@ int RunSolve(int argc, char** argv) {
     if (covariance.ok()) {
       outputs.covariance = &*covariance;
       outputs.covariance_kinds = covariance_kinds;
+      if (ground_truth) outputs.consistency = ComputeConsistency(*graph, *covariance, *ground_truth);
     }
   }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {

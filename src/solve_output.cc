@@ -94,6 +94,11 @@ JsonValue CovarianceJson(const SolveOutputs& outputs) {
           {"file", c.weak_directions.empty() ? "covariances.csv" : ""}};
 }
 
+JsonValue NeesJson(const NeesMean& nees) {
+  return {{"count", nees.count}, {"dim", nees.dim}, {"mean", nees.mean},
+          {"band_95", {nees.band_low, nees.band_high}}};
+}
+
 std::vector<ObjectPoseRow> EstimatedObjectPoseRows(const SolveOutputs& outputs) {
   const GroundTruth none;  // object-centric poses need none; world-centric ones get none then
   return Rows(EstimatedObjectPoses(*outputs.solved,
@@ -206,6 +211,11 @@ std::string SummaryJson(const SolveOutputs& outputs) {
       {"warnings", std::move(warnings)}};
   if (outputs.metrics) summary["metrics"] = MetricsToJson(*outputs.metrics);
   if (outputs.covariance) summary["covariance"] = CovarianceJson(outputs);
+  if (const std::optional<Consistency>& c = outputs.consistency) {
+    summary["consistency"] = {{"camera", NeesJson(c->camera)},
+                              {"object_motion", NeesJson(c->object_motion)},
+                              {"object_pose", NeesJson(c->object_pose)}};
+  }
   return DumpJson(summary);
 }
 

@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "dynslam/consistency.h"
 #include "dynslam/covariance.h"
 #include "dynslam/graph.h"
 #include "dynslam/metrics.h"
@@ -42,6 +43,8 @@ struct SolveOutputs {
   // "covariance"; `covariance_kinds` is the request as given ("cameras,motions").
   const CovarianceReport* covariance = nullptr;
   std::string covariance_kinds;
+  // With covariances and ground truth: summary.json's "consistency" (NEES, consistency.h).
+  std::optional<Consistency> consistency;
 };
 
 // summary.json's text (SPEC §4), without the trailing newline.

@@ -21,6 +21,8 @@ METRIC_FAMILIES = {
     "object_pose": ("mean_rot_deg", "mean_trans_m", "pairs", "objects"),
 }
 METRIC_COLUMNS = [f"{family}_{key}" for family, keys in METRIC_FAMILIES.items() for key in keys]
+# summary.json's "consistency" (solve --covariance with --gt): the mean NEES of each family.
+NEES_COLUMNS = [f"{family}_nees" for family in METRIC_FAMILIES]
 # Terminations of a finished solve (SPEC §4): the cell is done; "interrupted" is run again.
 FINISHED = ("convergence", "no_convergence", "time_limit")
 
@@ -114,7 +116,10 @@ def summary_columns(summary):
         "linear_solve_time_s": times.get("linear_solve"),
     }
     metrics = summary.get("metrics") or {}
+    consistency = summary.get("consistency") or {}
     for family, keys in METRIC_FAMILIES.items():
         for key in keys:
             columns[f"{family}_{key}"] = (metrics.get(family) or {}).get(key)
+        nees = consistency.get(family) or {}
+        columns[f"{family}_nees"] = nees.get("mean") if nees.get("count") else None
     return columns

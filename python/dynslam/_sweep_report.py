@@ -83,14 +83,15 @@ def write(sweep_dir, rows):
         key = (entry["options"], entry["scene"], entry["formulation"])
         by_group.setdefault(key, {})[entry["metric"]] = entry
     for options in sorted({k[0] for k in by_group}):
+        groups = {k: v for k, v in by_group.items() if k[0] == options}
+        measured = [(m, l) for m, l in st.METRICS + st.NEES
+                    if any(m in entries for entries in groups.values())]
         lines += [f"## Option set `{options}`", "",
-                  "| scene | formulation | seeds | " + " | ".join(l for _, l in st.METRICS) + " |",
-                  "|---|---|---|" + "---|" * len(st.METRICS)]
-        for (o, scene, formulation), entries in sorted(by_group.items()):
-            if o != options:
-                continue
+                  "| scene | formulation | seeds | " + " | ".join(l for _, l in measured) + " |",
+                  "|---|---|---|" + "---|" * len(measured)]
+        for (o, scene, formulation), entries in sorted(groups.items()):
             n = entries[st.METRICS[0][0]]["n"]
-            cells = " | ".join(_interval(entries[m]) for m, _ in st.METRICS)
+            cells = " | ".join(_interval(entries[m]) if m in entries else "–" for m, _ in measured)
             lines.append(f"| {scene} | {formulation} | {n} | {cells} |")
         lines.append("")
     lines += ["## Each formulation against wc", "",

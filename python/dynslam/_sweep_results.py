@@ -6,7 +6,7 @@ Each row is committed as it arrives: a stopped sweep keeps every finished cell.
 import csv
 import sqlite3
 
-from ._sweep_cells import METRIC_COLUMNS
+from ._sweep_cells import METRIC_COLUMNS, NEES_COLUMNS
 
 KEY = ("scene", "seed", "formulation", "options")
 COLUMNS = [
@@ -15,7 +15,7 @@ COLUMNS = [
     ("steps", "INTEGER"), ("iterations", "INTEGER"), ("initial_cost", "REAL"),
     ("final_cost", "REAL"), ("solve_time_s", "REAL"), ("linear_solve_time_s", "REAL"),
     ("wall_s", "REAL"),
-] + [(name, "REAL") for name in METRIC_COLUMNS] + [
+] + [(name, "REAL") for name in METRIC_COLUMNS + NEES_COLUMNS] + [
     ("cell_dir", "TEXT"), ("host", "TEXT"), ("version", "TEXT"), ("error", "TEXT"),
 ]
 NAMES = [name for name, _ in COLUMNS]

@@ -216,3 +216,16 @@ def test_an_interrupted_local_sweep_keeps_its_finished_cells(tmp_path):
     assert again.returncode == 0, again.stderr
     assert f"{len(finished)} finished before, {12 - len(finished)} to run" in again.stderr
     assert len(cell_rows(out)) == 12
+
+
+def test_nees_columns_come_from_the_summarys_consistency():
+    from dynslam._sweep_cells import summary_columns
+    summary = {"termination": "convergence", "steps": 3, "iterations": 3, "initial_cost": 2.0,
+               "final_cost": 1.0, "time_s": {"total": 0.5, "linear_solve": 0.2},
+               "consistency": {"camera": {"count": 30, "mean": 5.5},
+                               "object_motion": {"count": 0, "mean": 0.0}}}
+    columns = summary_columns(summary)
+    assert columns["camera_nees"] == 5.5
+    assert columns["object_motion_nees"] is None  # nothing measured is not a NEES of 0
+    assert columns["object_pose_nees"] is None
+    assert columns["camera_mean_rot_deg"] is None  # no metrics without ground truth
