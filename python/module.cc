@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
@@ -103,6 +104,49 @@ PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph);
 struct PySolveReport {
   SolveReport report;
   Graph graph;  // at the solution
+
+  py::dict Covariance(const py::object& ids, const py::object& kinds) const {
+    std::vector<VertexId> wanted;
+    if (!ids.is_none()) {
+      wanted = ids.cast<std::vector<VertexId>>();
+    } else {
+      std::vector<CovarianceKind> parsed;
+      std::string bad;
+      const std::string text = kinds.is_none() ? "all" : kinds.cast<std::string>();
+      if (!ParseCovarianceKinds(text, &parsed, &bad)) {
+        throw py::value_error("kinds: unknown kind '" + bad +
+                              "' (cameras, motions, object_poses, points, all)");
+      }
+      wanted = VerticesOfKinds(graph, parsed);
+    }
+    Expected<CovarianceReport> computed = [&] {
+      py::gil_scoped_release release;
+      return ComputeCovariances(graph, report, wanted);
+    }();
+    if (!computed.ok()) throw py::value_error(computed.error().ToString());
+    if (!computed->held_constant.empty()) {
+      throw py::value_error("vertex " + std::to_string(computed->held_constant.front()) +
+                            " is held constant in this solve: it has no covariance");
+    }
+    if (const auto& weak = computed->weak_directions; !weak.empty()) {
+      std::string names;
+      for (const WeakDirection& w : weak) {
+        names += (names.empty() ? "" : ", ") + std::to_string(w.id) + " " +
+                 ComponentName(graph.vertices.at(w.id).type, w.component);
+      }
+      py::object error = py::module_::import("numpy.linalg").attr("LinAlgError");
+      PyErr_SetString(error.ptr(), ("the information matrix is singular along " +
+                                    std::to_string(weak.size()) + " directions: " + names).c_str());
+      throw py::error_already_set();
+    }
+    py::dict out;
+    for (const MarginalCovariance& m : computed->marginals) {
+      out[py::int_(m.id)] = py::array_t<double>({m.covariance.rows(), m.covariance.cols()},
+                                                {sizeof(double), sizeof(double) * m.covariance.rows()},
+                                                m.covariance.data());
+    }
+    return out;
+  }
 
   py::dict Convergence() const {
     const py::ssize_t n = static_cast<py::ssize_t>(report.convergence.size());
@@ -237,7 +281,14 @@ void DefineTypes(py::module_& m) {
       .def_property_readonly("convergence", &PySolveReport::Convergence,
                              "convergence.csv's columns as arrays (SPEC §4)")
       .def("summary", &PySolveReport::Summary, py::arg("input") = "",
-           "summary.json's contents as a dict (SPEC §4)");
+           "summary.json's contents as a dict (SPEC §4)")
+      .def("covariance", &PySolveReport::Covariance, py::arg("ids") = py::none(),
+           py::arg("kinds") = py::none(),
+           "marginal covariances at the solution (docs/COVARIANCE.md): {vertex id: array} for "
+           "the vertex ids given, or for the kinds ('cameras', 'motions', 'object_poses', "
+           "'points', 'all'; default 'all'); a pose's 6x6 over [omega; rho], a point's 3x3. "
+           "ValueError for an unknown kind or a vertex held constant, numpy.linalg.LinAlgError "
+           "naming the weakly determined variables when the information matrix is singular");
 }
 
 void DefineFunctions(py::module_& m) {

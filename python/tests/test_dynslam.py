@@ -241,3 +241,37 @@ def test_concurrent_solves_equal_serial_ones():
         for (cost, steps, values), (cost2, steps2, values2) in zip(serial, concurrent):
             assert (cost, steps) == (cost2, steps2)
             assert all(np.array_equal(a, b) for a, b in zip(values, values2))
+
+
+def test_covariances_as_arrays_and_their_errors(tmp_path):
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")))
+    cameras = report.covariance(kinds="cameras")
+    ids = report.graph.vertices("camera")["id"]
+    assert sorted(cameras) == sorted(int(i) for i in ids)
+    block = cameras[int(ids[-1])]
+    assert block.shape == (6, 6) and np.allclose(block, block.T)
+    assert np.all(np.linalg.eigvalsh(block) > 0)
+    # The same numbers as the command line's covariances.csv, to the last digit.
+    out = tmp_path / "cli"
+    subprocess.run([os.environ["DYNSLAM_CLI"], "solve", graph_path("oc_b"), "--out", str(out),
+                    "--covariance", "cameras"], check=True, capture_output=True)
+    with open(out / "covariances.csv") as f:
+        row = [line for line in f if line.startswith(f"{int(ids[-1])},")][0].split(",")
+    assert row[1:3] == ["camera", "6"]
+    assert [float(x) for x in row[3:]] == [block[r, c] for r in range(6) for c in range(r, 6)]
+    with pytest.raises(ValueError, match="poses"):
+        report.covariance(kinds="poses")
+    pose_graph = os.path.join(ROOT, "data", "reference", "posegraph_parking-garage", "graphs",
+                              "pose_graph.g2o")
+    held = dynslam.solve(dynslam.read_graph(pose_graph), fix_first=True, max_iterations=2)
+    with pytest.raises(ValueError, match="held constant"):
+        held.covariance(ids=[0])  # the smallest-id pose, which fix_first holds
+
+
+def test_a_singular_information_matrix_names_its_weak_directions():
+    path = os.path.join(ROOT, "..", "shared", "reference", "kitti_0003", "graphs", "oc_a.g2o")
+    if not os.path.exists(path):
+        pytest.skip("no " + path)
+    report = dynslam.solve(dynslam.read_graph(path))
+    with pytest.raises(np.linalg.LinAlgError, match="singular along"):
+        report.covariance()
