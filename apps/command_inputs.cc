@@ -1,5 +1,7 @@
 #include "command_inputs.h"
 
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <utility>
 
@@ -15,6 +17,27 @@ bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>*
   }
   *gt = std::move(read).value();
   return true;
+}
+
+std::string EmbeddedKittiDir() {
+  namespace fs = std::filesystem;
+  auto has_data = [](const fs::path& dir) {
+    std::error_code ec;
+    return fs::is_directory(dir / "label_02", ec);
+  };
+  if (const char* given = std::getenv("DYNSLAM_KITTI"); given != nullptr && *given != '\0') {
+    return given;
+  }
+  std::error_code ec;
+  const fs::path command = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path dir = command.parent_path();
+    for (const fs::path& candidate : {dir / "../../../data/kitti_tracking",
+                                      dir / "../share/dynslam/kitti_tracking"}) {
+      if (has_data(candidate)) return candidate.lexically_normal().string();
+    }
+  }
+  return "data/kitti_tracking";
 }
 
 }  // namespace dynslam::cli

@@ -14,6 +14,12 @@ namespace dynslam::cli {
 // stderr; the caller then exits with kExitBadInput.
 bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>* gt);
 
+// The embedded KITTI Tracking data (oxts/, label_02/, calib/), wherever the command is run from:
+// $DYNSLAM_KITTI, else beside the command — the repository's data/kitti_tracking for a command in
+// build/<type>/apps/, <prefix>/share/dynslam/kitti_tracking for an installed one — else
+// data/kitti_tracking of the working directory.
+std::string EmbeddedKittiDir();
+
 }  // namespace dynslam::cli
 
 #endif  // DYNSLAM_APPS_COMMAND_INPUTS_H_

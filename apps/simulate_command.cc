@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli.h"
+#include "command_inputs.h"
 #include "commands.h"
 #include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
@@ -64,7 +65,7 @@ std::string ArgumentsLine(int argc, char** argv) {
 
 int RunSimulate(int argc, char** argv) {
   SimulateOptions o;
-  std::string kitti_dir = "data/kitti_tracking", sequence, frames, out_prefix;
+  std::string kitti_dir = EmbeddedKittiDir(), sequence, frames, out_prefix;
   std::string object_types = "Car,Van,Truck,Tram,Cyclist,Misc";
   std::string density = "default";
   int64_t seed = 0;
@@ -76,8 +77,9 @@ int RunSimulate(int argc, char** argv) {
       "small synthetic scene, and writes PREFIX.g2o (a front-end file: SPEC §1.2 edges and §1.4\n"
       "labels) and PREFIX.gt.txt (SPEC §2). Deterministic for a seed. See docs/SIMULATOR.md.");
   parser.AddString("kitti", &kitti_dir,
-                   "KITTI tracking folder (oxts/, label_02/, calib/); the embedded data is "
-                   "data/kitti_tracking of the repository",
+                   "KITTI tracking folder (oxts/, label_02/, calib/); default: the embedded data "
+                   "(the repository's data/kitti_tracking, found from where the command is, or "
+                   "$DYNSLAM_KITTI)",
                    "DIR");
   parser.AddString("seq", &sequence, "sequence number, e.g. 0003 (required unless --synthetic)",
                    "NNNN");
