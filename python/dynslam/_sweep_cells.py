@@ -89,17 +89,23 @@ def run_cell(frontend, sweep_dir, cell, flags, cli):
     os.replace(temporary, built)
     # One thread per cell: a worker is one core (docs/SWEEPS.md); an option set may say otherwise.
     threads = [] if any(f.startswith("--threads=") for f in flags) else ["--threads=1"]
+    summary_path = os.path.join(cell_dir, "summary.json")
+    if os.path.exists(summary_path):
+        os.remove(summary_path)  # so that one found below is this solve's
     result = _run([cli, "solve", built, "--gt", gt_path, "--out", cell_dir, *threads, *flags])
     row["wall_s"] = time.monotonic() - started
-    summary_path = os.path.join(cell_dir, "summary.json")
-    if result.returncode not in (0, 130, 143) or not os.path.isfile(summary_path):
+    if not os.path.isfile(summary_path):
         row["error"] = _problem(result, "dynslam solve")
         return row
+    # A complete set of outputs: the solve's own status, whatever else failed (a singular
+    # information matrix for --covariance exits 1 after writing them).
     with open(summary_path) as f:
         summary = json.load(f)
     row.update(summary_columns(summary))
     row["status"] = ("ok" if row["termination"] in FINISHED
                      else "interrupted" if row["termination"] == "interrupted" else "failed")
+    if result.returncode not in (0, 130, 143):
+        row["error"] = _problem(result, "dynslam solve")
     return row
 
 
@@ -114,6 +120,9 @@ def summary_columns(summary):
         "final_cost": summary["final_cost"],
         "solve_time_s": times.get("total"),
         "linear_solve_time_s": times.get("linear_solve"),
+        # With --covariance: directions its information matrix leaves undetermined (0: none).
+        "weak_directions": (len(summary["covariance"]["weak_directions"])
+                            if "covariance" in summary else None),
     }
     metrics = summary.get("metrics") or {}
     consistency = summary.get("consistency") or {}

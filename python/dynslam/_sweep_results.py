@@ -14,7 +14,7 @@ COLUMNS = [
     ("options", "TEXT NOT NULL"), ("status", "TEXT NOT NULL"), ("termination", "TEXT"),
     ("steps", "INTEGER"), ("iterations", "INTEGER"), ("initial_cost", "REAL"),
     ("final_cost", "REAL"), ("solve_time_s", "REAL"), ("linear_solve_time_s", "REAL"),
-    ("wall_s", "REAL"),
+    ("wall_s", "REAL"), ("weak_directions", "INTEGER"),
 ] + [(name, "REAL") for name in METRIC_COLUMNS + NEES_COLUMNS] + [
     ("cell_dir", "TEXT"), ("host", "TEXT"), ("version", "TEXT"), ("error", "TEXT"),
 ]
@@ -27,6 +27,11 @@ class Results:
         columns = ", ".join(f"{name} {kind}" for name, kind in COLUMNS)
         self.connection.execute(
             f"CREATE TABLE IF NOT EXISTS cells ({columns}, PRIMARY KEY ({', '.join(KEY)}))")
+        # A database from an older dynslam: the columns added since, empty in its rows.
+        present = {row[1] for row in self.connection.execute("PRAGMA table_info(cells)")}
+        for name, kind in COLUMNS:
+            if name not in present:
+                self.connection.execute(f"ALTER TABLE cells ADD COLUMN {name} {kind.split()[0]}")
         self.connection.commit()
 
     def close(self):

@@ -229,3 +229,20 @@ def test_nees_columns_come_from_the_summarys_consistency():
     assert columns["object_motion_nees"] is None  # nothing measured is not a NEES of 0
     assert columns["object_pose_nees"] is None
     assert columns["camera_mean_rot_deg"] is None  # no metrics without ground truth
+
+
+def test_a_results_database_of_an_older_schema_gains_the_new_columns(tmp_path):
+    from dynslam._sweep_results import NAMES, Results
+    path = str(tmp_path / "results.sqlite")
+    with sqlite3.connect(path) as connection:  # the first schema, before weak_directions
+        connection.execute("CREATE TABLE cells (scene TEXT NOT NULL, seed INTEGER NOT NULL, "
+                           "formulation TEXT NOT NULL, options TEXT NOT NULL, status TEXT NOT NULL, "
+                           "PRIMARY KEY (scene, seed, formulation, options))")
+        connection.execute("INSERT INTO cells VALUES ('0003', 1, 'wc', 'default', 'ok')")
+    results = Results(path)
+    results.record({"scene": "0003", "seed": 2, "formulation": "wc", "options": "default",
+                    "status": "ok", "weak_directions": 0})
+    rows = results.rows()
+    results.close()
+    assert [r["seed"] for r in rows] == [1, 2] and set(rows[0]) == set(NAMES)
+    assert rows[0]["weak_directions"] is None and rows[1]["weak_directions"] == 0
