@@ -176,7 +176,12 @@ def test_sweep_on_a_dask_cluster_equals_direct_solves(tmp_path, cluster):
                 assert row[f"{family}_{key}"] == pytest.approx(
                     summary["metrics"][family][key], rel=1e-12)
     assert os.path.isfile(os.path.join(out, "results.csv"))
-    assert os.path.isfile(os.path.join(out, "report.md"))
+    os.remove(os.path.join(out, "report.md"))
+    report = run_sweep("report", out, timeout=120)
+    assert report.returncode == 0, report.stderr
+    with open(os.path.join(out, "report.md")) as f:
+        text = f.read()
+    assert "| synthetic | oc_b | 3 |" in text and "| default | oc_b | camera_mean_rot_deg | 6 |" in text
 
 
 def test_a_killed_worker_costs_only_a_rerun_of_its_cell(tmp_path, cluster):
