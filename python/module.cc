@@ -6,8 +6,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cerrno>
+#include <filesystem>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,6 +39,54 @@ template <typename T>
 T Unwrap(Expected<T> expected) {
   if (!expected.ok()) throw ErrorException{expected.error()};
   return std::move(expected).value();
+}
+
+// A str or os.PathLike as a path (TypeError otherwise, as open() does).
+std::string PathText(const py::object& path) {
+  return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
+
+// FileNotFoundError(ENOENT, message, path) unless `path` is a file, before a reader runs.
+std::string ExistingFile(const py::object& path) {
+  const std::string text = PathText(path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(text, ec)) {
+    py::object error = py::module_::import("builtins").attr("FileNotFoundError")(
+        ENOENT, "No such file", text);
+    PyErr_SetObject(PyExc_FileNotFoundError, error.ptr());
+    throw py::error_already_set();
+  }
+  return text;
+}
+
+// GroundTruth's pickled state: ([(frame, pose)], [(object, frame, pose)]), poses as 7-tuples of
+// the in-memory layout (pose.h), so that a round trip is bit-exact.
+py::tuple GroundTruthState(const GroundTruth& gt) {
+  py::list cameras, objects;
+  for (const auto& [frame, pose] : gt.cameras) cameras.append(py::make_tuple(frame, pose.data));
+  for (const auto& [key, pose] : gt.objects) {
+    objects.append(py::make_tuple(key.first, key.second, pose.data));
+  }
+  return py::make_tuple(cameras, objects);
+}
+
+GroundTruth GroundTruthFromState(const py::tuple& state) {
+  GroundTruth gt;
+  for (const py::handle item : state[0].cast<py::list>()) {
+    const auto [frame, data] = item.cast<std::pair<int64_t, std::array<double, kPoseSize>>>();
+    gt.cameras[frame] = Pose{data};
+  }
+  for (const py::handle item : state[1].cast<py::list>()) {
+    const auto [object, frame, data] =
+        item.cast<std::tuple<int64_t, int64_t, std::array<double, kPoseSize>>>();
+    gt.objects[{object, frame}] = Pose{data};
+  }
+  return gt;
+}
+
+Graph GraphFromText(const std::string& text) {
+  std::istringstream in(text);
+  return Unwrap(ReadGraph(in, "<pickled graph>"));
 }
 
 Role ParseRole(const std::string& name) {
@@ -209,8 +260,8 @@ PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph) {
 }
 
 GroundTruth AsGroundTruth(const py::object& gt) {
-  if (py::isinstance<py::str>(gt)) return Unwrap(ReadGroundTruth(gt.cast<std::string>()));
-  return gt.cast<GroundTruth>();
+  if (py::isinstance<GroundTruth>(gt)) return gt.cast<GroundTruth>();
+  return Unwrap(ReadGroundTruth(ExistingFile(gt)));  // a path
 }
 
 std::pair<Graph, GroundTruth> SimulateScene(const py::object& kitti_dir,
@@ -225,8 +276,8 @@ std::pair<Graph, GroundTruth> SimulateScene(const py::object& kitti_dir,
     if (kitti_dir.is_none() || sequence.is_none()) {
       throw py::value_error("simulate: kitti_dir and sequence are required unless synthetic=True");
     }
-    const KittiSequence data = Unwrap(
-        ReadKittiSequence(kitti_dir.cast<std::string>(), sequence.cast<std::string>()));
+    const KittiSequence data =
+        Unwrap(ReadKittiSequence(PathText(kitti_dir), sequence.cast<std::string>()));
     scene = Unwrap(MakeKittiScene(data, options));
   }
   SimulatedScene simulated = Unwrap(Simulate(scene, options));
@@ -258,13 +309,22 @@ void DefineTypes(py::module_& m) {
            "ids, object, frame, tracklet (int64 arrays) and value (n×7 poses [tx ty tz qx qy qz "
            "qw] or n×3 points) of the vertices with this role")
       .def("__repr__", [](const Graph& g) {
-        return "<dynslam.Graph " + std::to_string(g.vertices.size()) + " vertices, " +
-               std::to_string(g.NumEdges()) + " edges>";
-      });
+        return "<dynslam.Graph " + (g.formulation ? *g.formulation + ", " : std::string()) +
+               std::to_string(g.vertices.size()) + " vertices, " + std::to_string(g.NumEdges()) +
+               " edges>";
+      })
+      .def(py::pickle([](const Graph& g) { return py::bytes(GraphText(g)); },
+                      [](const py::bytes& text) { return GraphFromText(std::string(text)); }));
   py::class_<GroundTruth>(m, "GroundTruth", "A ground-truth file (SPEC §2).")
       .def_property_readonly("num_cameras", [](const GroundTruth& g) { return g.cameras.size(); })
       .def_property_readonly("num_object_poses",
-                             [](const GroundTruth& g) { return g.objects.size(); });
+                             [](const GroundTruth& g) { return g.objects.size(); })
+      .def("__repr__", [](const GroundTruth& g) {
+        return "<dynslam.GroundTruth " + std::to_string(g.cameras.size()) + " cameras, " +
+               std::to_string(g.objects.size()) + " object poses>";
+      })
+      .def(py::pickle([](const GroundTruth& gt) { return GroundTruthState(gt); },
+                      [](const py::tuple& state) { return GroundTruthFromState(state); }));
   py::class_<PySolveReport>(m, "SolveReport", "What a solve reached and how (SPEC §4).")
       .def_property_readonly("graph", [](const PySolveReport& r) { return r.graph; },
                              "the graph at the solution")
@@ -278,6 +338,13 @@ void DefineTypes(py::module_& m) {
       .def_property_readonly("iterations", [](const PySolveReport& r) { return r.report.iterations; })
       .def_property_readonly("termination", [](const PySolveReport& r) { return r.report.termination; })
       .def_property_readonly("usable", [](const PySolveReport& r) { return r.report.usable; })
+      .def("__repr__", [](const PySolveReport& r) {
+        std::ostringstream text;
+        text.precision(12);
+        text << "<dynslam.SolveReport " << r.report.termination << ", " << r.report.steps
+             << " steps, cost " << r.report.initial_cost << " -> " << r.report.final_cost << ">";
+        return text.str();
+      })
       .def_property_readonly("convergence", &PySolveReport::Convergence,
                              "convergence.csv's columns as arrays (SPEC §4)")
       .def("summary", &PySolveReport::Summary, py::arg("input") = "",
@@ -292,17 +359,20 @@ void DefineTypes(py::module_& m) {
 }
 
 void DefineFunctions(py::module_& m) {
-  m.def("read_graph", [](const std::string& path, bool skip_unknown_tags, bool repair_information) {
+  m.def("read_graph", [](const py::object& path, bool skip_unknown_tags, bool repair_information) {
     ReadOptions options;
     options.skip_unknown_tags = skip_unknown_tags;
     options.repair_information = repair_information;
-    return Unwrap(ReadGraph(path, options));
-  }, py::arg("path"), py::arg("skip_unknown_tags") = false, py::arg("repair_information") = false);
-  m.def("write_graph", [](const Graph& graph, const std::string& path) {
-    if (Status s = WriteGraph(graph, path); !s.ok()) throw ErrorException{s.error()};
+    return Unwrap(ReadGraph(ExistingFile(path), options));
+  }, py::arg("path"), py::arg("skip_unknown_tags") = false, py::arg("repair_information") = false,
+     "a graph file (SPEC §1); path: str or path-like; FileNotFoundError when there is none, "
+     "dynslam.Error (.file, .line) for bad content");
+  m.def("write_graph", [](const Graph& graph, const py::object& path) {
+    if (Status s = WriteGraph(graph, PathText(path)); !s.ok()) throw ErrorException{s.error()};
   }, py::arg("graph"), py::arg("path"));
-  m.def("read_ground_truth", [](const std::string& path) { return Unwrap(ReadGroundTruth(path)); },
-        py::arg("path"));
+  m.def("read_ground_truth", [](const py::object& path) {
+    return Unwrap(ReadGroundTruth(ExistingFile(path)));
+  }, py::arg("path"), "a ground-truth file (SPEC §2); path: str or path-like");
   m.def("build", [](const Graph& front_end, const std::string& formulation, const py::object& gt,
                     const py::object& start, const py::kwargs& options) {
     Formulation f;

@@ -3,11 +3,19 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <type_traits>
 
 namespace py = pybind11;
 
 namespace dynslam::python {
 namespace {
+
+template <typename T>
+const char* TypeName() {
+  if constexpr (std::is_same_v<T, bool>) return "bool";
+  if constexpr (std::is_integral_v<T>) return "int";
+  return "float";
+}
 
 template <typename Options>
 using Setters = std::map<std::string, std::function<void(Options*, py::handle)>>;
@@ -16,7 +24,20 @@ using Setters = std::map<std::string, std::function<void(Options*, py::handle)>>
 template <typename Options, typename T>
 std::pair<const std::string, std::function<void(Options*, py::handle)>> Plain(
     const char* name, T Options::*member) {
-  return {name, [member](Options* o, py::handle value) { o->*member = value.cast<T>(); }};
+  return {name, [name, member](Options* o, py::handle value) {
+            // bool from a bool only: pybind11 would take 0 and 1, and a float from an int.
+            const bool wrong_bool = std::is_same_v<T, bool> && !py::isinstance<py::bool_>(value);
+            try {
+              if (!wrong_bool) {
+                o->*member = value.cast<T>();
+                return;
+              }
+            } catch (const py::cast_error&) {
+            }
+            throw py::type_error(std::string(name) + ": expected " + TypeName<T>() + ", got " +
+                                 py::str(py::type::of(value).attr("__name__")).cast<std::string>() +
+                                 " " + py::repr(value).cast<std::string>());
+          }};
 }
 
 // An enum field spelled as on the command line.
@@ -24,6 +45,10 @@ template <typename Options, typename E>
 std::pair<const std::string, std::function<void(Options*, py::handle)>> Named(
     const char* name, E Options::*member, bool (*parse)(const std::string&, E*)) {
   return {name, [name, member, parse](Options* o, py::handle value) {
+            if (!py::isinstance<py::str>(value)) {
+              throw py::type_error(std::string(name) + ": expected str, got " +
+                                   py::repr(value).cast<std::string>());
+            }
             const std::string text = value.cast<std::string>();
             if (!parse(text, &(o->*member))) {
               throw py::value_error(std::string(name) + ": unknown value '" + text + "'");

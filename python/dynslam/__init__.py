@@ -8,10 +8,11 @@
 
 Poses are arrays [tx ty tz qx qy qz qw]; errors are dynslam.Error with .file and .line.
 """
+from ._version import __version__
 from ._dynslam import (FORMULATIONS, Error, Graph, GroundTruth, SolveReport, build, metrics,
                        read_graph, read_ground_truth, simulate, solve, write_graph)
 
-__all__ = ["Error", "FORMULATIONS", "Graph", "GroundTruth", "SolveReport", "build", "compare",
+__all__ = ["__version__", "Error", "FORMULATIONS", "Graph", "GroundTruth", "SolveReport", "build", "compare",
            "metrics", "read_graph", "read_ground_truth", "simulate", "solve", "write_graph"]
 
 

@@ -275,3 +275,44 @@ def test_a_singular_information_matrix_names_its_weak_directions():
     report = dynslam.solve(dynslam.read_graph(path))
     with pytest.raises(np.linalg.LinAlgError, match="singular along"):
         report.covariance()
+
+
+def test_version_paths_pickling_and_reprs(tmp_path):
+    import pathlib
+    import pickle
+    assert dynslam.__version__.count(".") == 2
+    graph = dynslam.read_graph(pathlib.Path(graph_path("oc_b")))
+    assert repr(graph) == f"<dynslam.Graph oc_b, {graph.num_vertices} vertices, {graph.num_edges} edges>"
+    dynslam.write_graph(graph, tmp_path / "copy.g2o")  # a path-like to write to
+    again = pickle.loads(pickle.dumps(graph))
+    assert (again.num_vertices, again.num_edges) == (graph.num_vertices, graph.num_edges)
+    for role in ("camera", "object_pose", "object_point"):
+        assert np.array_equal(again.vertices(role)["value"], graph.vertices(role)["value"])
+    gt = dynslam.read_ground_truth(pathlib.Path(GT))
+    gt_again = pickle.loads(pickle.dumps(gt))
+    assert repr(gt_again) == repr(gt) == f"<dynslam.GroundTruth {gt.num_cameras} cameras, {gt.num_object_poses} object poses>"
+    report = dynslam.solve(again, max_iterations=5)
+    # The metrics of a pickled ground truth are those of the file's, to the last digit.
+    assert dynslam.metrics(report.graph, gt_again) == dynslam.metrics(report.graph, GT)
+    assert repr(report).startswith("<dynslam.SolveReport no_convergence, 5 steps, cost ")
+
+
+@pytest.mark.parametrize("options, error, words", [
+    ({"max_iterations": "5"}, TypeError, "max_iterations: expected int, got str"),
+    ({"extrapolate": 1}, TypeError, "extrapolate: expected bool"),
+    ({"minimizer": 3}, TypeError, "minimizer: expected str"),
+    ({"minimizer": "newton"}, ValueError, "minimizer: unknown value 'newton'"),
+    ({"no_such_option": 1}, TypeError, "unknown option 'no_such_option'"),
+])
+def test_bad_options_name_themselves(options, error, words):
+    with pytest.raises(error, match=words):
+        dynslam.solve(dynslam.read_graph(graph_path("wc")), **options)
+
+
+def test_missing_files_are_file_not_found(tmp_path):
+    for read in (dynslam.read_graph, dynslam.read_ground_truth):
+        with pytest.raises(FileNotFoundError) as raised:
+            read(tmp_path / "absent")
+        assert raised.value.filename == str(tmp_path / "absent")
+    with pytest.raises(TypeError):
+        dynslam.read_graph(42)
