@@ -9,6 +9,7 @@ the same command again runs only the cells not finished. Exit codes: 0 every cel
 some failed, 2 a bad sweep file or usage, 130 interrupted.
 """
 import argparse
+import fcntl
 import os
 import signal
 import sys
@@ -124,9 +125,24 @@ def _record(results, progress, row):
     progress.update(row)
 
 
+def _lock(out):
+    """DIR/sweep.lock, held while a sweep runs in DIR; None when another process holds it."""
+    lock = open(os.path.join(out, "sweep.lock"), "a+")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        lock.close()
+        return None
+    return lock
+
+
 def run(sweep, out, scheduler=None, workers=None):
     """Runs the cells of `sweep` not yet finished in `out`; returns an exit code."""
     os.makedirs(out, exist_ok=True)
+    lock = _lock(out)  # released when this process ends
+    if lock is None:
+        print(f"error: {out} is in use by another sweep (its sweep.lock is held)", file=sys.stderr)
+        return EXIT_USAGE
     results = Results(os.path.join(out, "results.sqlite"))
     finished = results.finished()
     cells = [c for c in sweep.cells()

@@ -251,3 +251,15 @@ def test_a_results_database_of_an_older_schema_gains_the_new_columns(tmp_path):
     results.close()
     assert [r["seed"] for r in rows] == [1, 2] and set(rows[0]) == set(NAMES)
     assert rows[0]["weak_directions"] is None and rows[1]["weak_directions"] == 0
+
+
+def test_a_second_sweep_in_the_same_directory_is_refused(tmp_path):
+    import fcntl
+    path = write(tmp_path / "s.toml", SMALL_SWEEP)
+    out = tmp_path / "out"
+    out.mkdir()
+    with open(out / "sweep.lock", "a+") as held:  # as a running sweep holds it
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        result = run_sweep(path, "--out", str(out))
+    assert result.returncode == 2 and "in use by another sweep" in result.stderr
+    assert not (out / "results.sqlite").exists()
