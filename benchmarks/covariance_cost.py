@@ -3,7 +3,8 @@
 at the front end's density (seed 1), builds the formulations, and solves each once with
 `--covariance` (cameras and motions for wc, cameras and object poses for the object-centric
 ones); prints a Markdown table of the solve's time (summary.json time_s.total), the
-covariances' time and the information matrix's size, and the peak memory of the process.
+covariances' time and the information matrix's size, and the peak memory of the process
+(GNU time: Debian's `time` package).
 
     benchmarks/covariance_cost.py [--seq 0020] [--formulations wc oc_b] [--out DIR]
 """
