@@ -165,9 +165,10 @@ def run(sweep, out, scheduler=None, workers=None):
                 cluster.close()
     results.write_csv(os.path.join(out, "results.csv"))
     rows = results.rows()
+    keys = {(c.scene, c.seed, c.formulation, c.options) for c in sweep.cells()}
+    ok = len(results.finished() & keys)  # of this sweep's cells (DIR may hold others)
     results.close()
     report = _sweep_report.write(out, rows)
-    ok = sum(r["status"] == "ok" for r in rows)
     print(f"{ok} of {total} cells finished; results: {out}/results.sqlite, results.csv; "
           f"report: {report}", file=sys.stderr)
     if interrupted:
