@@ -30,6 +30,7 @@ def main():
     parser.add_argument("--out", default=None)
     args = parser.parse_args()
     out = args.out or tempfile.mkdtemp(prefix="covariance_cost_")
+    os.makedirs(out, exist_ok=True)
     frontend = os.path.join(out, "frontend")
     run([args.cli, "simulate", "--seq", args.seq, "--seed", "1", "--out", frontend])
     print(f"| {args.seq} | variables | covariances of | columns | solve s | covariances s | peak RSS GB |")
