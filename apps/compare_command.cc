@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -35,6 +36,7 @@
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
 #include "solver_flags.h"
+#include "src/number_text.h"
 #include "stop_signals.h"
 
 // The repository's scripts/ folder, set by apps/CMakeLists.txt; the environment variable of the
@@ -72,6 +74,23 @@ std::string Fixed(double value, int digits) {
   return buffer;
 }
 
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// "[compare] 2/5 oc_a: convergence, 40 steps, final cost 12345.6789, 3.2 s; 10 s so far, about
+// 15 s left" to stderr after each formulation (the estimate: the mean so far per formulation).
+void PrintProgress(const std::vector<Row>& rows, size_t total, double elapsed_s) {
+  const Row& r = rows.back();
+  const double left = elapsed_s / rows.size() * (total - rows.size());
+  std::fprintf(stderr, "[compare] %zu/%zu %s: %s, %d steps, final cost %.10g, %.1f s%s; %.0f s so far",
+               rows.size(), total, FormulationName(r.formulation), r.report.termination.c_str(),
+               r.report.steps, r.report.final_cost, r.report.time_total_s,
+               r.reused ? " (read back)" : "", elapsed_s);
+  if (rows.size() < total) std::fprintf(stderr, ", about %.0f s left", left);
+  std::fprintf(stderr, "\n");
+}
+
 // "37", or "37 (interrupted)" for a solve a signal or --max-time stopped.
 std::string Iterations(const SolveReport& report) {
   const bool stopped_early =
@@ -102,6 +121,7 @@ void TablesWithoutGroundTruth(const std::vector<Row>& rows, std::string* markdow
         << "I," << f << ",,steps," << r.report.steps << "\n"
         << "I," << f << ",,iterations," << r.report.iterations << "\n"
         << "I," << f << ",,final_cost," << cost << "\n"
+        << "I," << f << ",,termination," << r.report.termination << "\n"
         << "I," << f << ",,solve_time_s," << r.report.time_total_s << "\n";
   }
   *markdown = md.str();
@@ -126,6 +146,11 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
     out << "I," << f << ",,camera_rot_deg," << camera.mean_rot_deg << "\n"
         << "I," << f << ",,camera_trans_m," << camera.mean_trans_m << "\n"
         << "I," << f << ",,variables," << r.variables << "\n"
+        << "I," << f << ",,edges," << r.edges << "\n"
+        << "I," << f << ",,steps," << r.report.steps << "\n"
+        << "I," << f << ",,iterations," << r.report.iterations << "\n"
+        << "I," << f << ",,final_cost," << NumberText(r.report.final_cost) << "\n"
+        << "I," << f << ",,termination," << r.report.termination << "\n"
         << "I," << f << ",,solve_time_s," << r.report.time_total_s << "\n";
   }
   auto object_table = [&](const char* title, const char* id,
@@ -525,6 +550,7 @@ int RunCompare(int argc, char** argv) {
   run.front_end_name = fs::path(front_end_path).filename().string();
   run.resume = resume;
   std::vector<Row> rows;
+  const auto started = std::chrono::steady_clock::now();
   Graph world_centric;  // wc's solution, with --start wc
   for (const Formulation formulation : formulations) {
     int exit_code = kExitOk;
@@ -534,6 +560,7 @@ int RunCompare(int argc, char** argv) {
         start_wc && wc ? &world_centric : nullptr, &exit_code);
     if (!row) return exit_code;
     rows.push_back(std::move(*row));
+    PrintProgress(rows, formulations.size(), SecondsSince(started));
     if (StopSignal() != 0) {
       std::fprintf(stderr, "[compare] stopped by a signal after %s: tables for what finished\n",
                    FormulationName(formulation));

@@ -68,13 +68,15 @@ FORMULATIONS = ("oc_a", "oc_b", "oc_c", "wc")
 
 
 def read_tables(path):
-    """tables.csv → {(table, formulation, object, quantity): value}."""
+    """tables.csv → {(table, formulation, object, quantity): value}; numbers as floats, the one
+    text quantity (termination) as text."""
     values = {}
     with open(path, newline="") as f:
         for line, row in enumerate(csv.DictReader(f), start=2):
             try:
-                values[(row["table"], row["formulation"], row["object"] or "",
-                        row["quantity"])] = float(row["value"])
+                key = (row["table"], row["formulation"], row["object"] or "", row["quantity"])
+                text = row["value"]
+                values[key] = text if row["quantity"] == "termination" else float(text)
             except (KeyError, TypeError, ValueError):
                 sys.exit(f"{path}:{line}: not a row of dynslam compare's tables.csv")
     return values
