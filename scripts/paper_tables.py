@@ -96,10 +96,16 @@ def read_scene(path):
     return scene
 
 
+def digits(x):
+    """Two decimals, as the paper prints them, or two significant digits where that would show
+    0.00 (our simulated camera errors are millimetres)."""
+    return f"{x:.2f}" if abs(x) >= 0.005 or x == 0 else f"{x:.2g}"
+
+
 def pair(values, table, formulation, obj, rot, trans):
     r = values.get((table, formulation, obj, rot))
     t = values.get((table, formulation, obj, trans))
-    return "– / –" if r is None or t is None else f"{r:.2f} / {t:.2f}"
+    return "– / –" if r is None or t is None else f"{digits(r)} / {digits(t)}"
 
 
 def paper_pair(p):
@@ -134,7 +140,7 @@ def main():
             f"| {seq} | {cam['oc_a']} | {paper_pair(p[0]) if p else '–'} | {cam['oc_b']} | "
             f"{paper_pair(p[1]) if p else '–'} | {cam['oc_c']} | {cam['wc']} | "
             f"{paper_pair(p[2]) if p else '–'} | {var['oc_b']:.0f} / {var['wc']:.0f} | "
-            f"{f'{p[3]} / {p[4]}' if p else '–'} | {time['oc_b']:.1f} / {time['wc']:.1f} | "
+            f"{f'{p[3]} / {p[4]}' if p else '–'} | {digits(time['oc_b'])} / {digits(time['wc'])} | "
             f"{f'{p[5]} / {p[6]}' if p else '–'} |")
 
     for table, title, paper in (("II", "object motion", PAPER_MOTION),
