@@ -131,7 +131,14 @@ Expected<CovarianceReport> ComputeCovariances(const Graph& solved, const SolveRe
   std::vector<bool> keep_column(static_cast<size_t>(system->first_column.back()), true);
   std::map<VertexId, size_t> variable_of;
   for (size_t v = 0; v < system->variables.size(); ++v) variable_of[system->variables[v]] = v;
-  for (const VertexId id : report.held_constant) {
+  // Held constant by the solve (unused vertices, --fix-first) or by their role (hy's embedded
+  // frames, graph_schema.h): Ceres gives them Jacobian columns of zeros, not variables.
+  std::vector<VertexId> constant = report.held_constant;
+  for (const VertexId id : system->variables) {
+    const RoleInfo* info = InfoOf(solved.vertices.at(id).label.role);
+    if (info != nullptr && info->constant) constant.push_back(id);
+  }
+  for (const VertexId id : constant) {
     auto it = variable_of.find(id);
     if (it == variable_of.end()) continue;
     for (int c = system->first_column[it->second]; c < system->first_column[it->second + 1]; ++c) {

@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
+#include "dynslam/simulate.h"
 #include "tests/reference_util.h"
 
 namespace dynslam {
@@ -138,6 +140,30 @@ TEST(CovarianceTest, KindsParseAndUnknownOnesAreNamed) {
   EXPECT_FALSE(ParseCovarianceKinds("cameras,poses", &kinds, &bad));
   EXPECT_EQ(bad, "poses");
   EXPECT_FALSE(ParseCovarianceKinds("", &kinds, &bad));
+}
+
+// hy's embedded frames are constant by their role: no columns of zeros that would make every
+// hy graph look singular (as they did before they were left out).
+TEST(CovarianceTest, HybridEmbeddedFramesAreNotVariables) {
+  SimulateOptions options;
+  options.synthetic = true;
+  options.seed = 1;
+  Expected<SimulatedScene> scene = Simulate(MakeSyntheticScene(options), options);
+  ASSERT_TRUE(scene.ok());
+  BuildReport build;
+  Expected<Graph> graph = BuildFormulation(scene->graph, Formulation::kHybrid, BuildOptions{},
+                                           &scene->ground_truth, &build);
+  ASSERT_TRUE(graph.ok());
+  Expected<SolveReport> report = Solve(SolverOptions{}, &*graph);
+  ASSERT_TRUE(report.ok());
+  Expected<CovarianceReport> covariance =
+      ComputeCovariances(*graph, *report, VerticesOfKinds(*graph, {CovarianceKind::kAll}));
+  ASSERT_TRUE(covariance.ok()) << covariance.error().ToString();
+  EXPECT_TRUE(covariance->weak_directions.empty());
+  EXPECT_FALSE(covariance->marginals.empty());
+  for (const MarginalCovariance& m : covariance->marginals) {
+    EXPECT_NE(m.role, Role::kEmbeddedFrame) << m.id;
+  }
 }
 
 TEST(CovarianceTest, AnUnknownVertexIsAnError) {
