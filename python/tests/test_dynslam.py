@@ -316,3 +316,18 @@ def test_missing_files_are_file_not_found(tmp_path):
         assert raised.value.filename == str(tmp_path / "absent")
     with pytest.raises(TypeError):
         dynslam.read_graph(42)
+
+
+def test_uncertainty_plot_of_a_solve_with_covariances(tmp_path):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "wc"
+    subprocess.run([os.environ["DYNSLAM_CLI"], "solve", graph_path("wc"), "--gt", GT, "--out",
+                    str(out), "--covariance", "cameras,motions"], check=True, capture_output=True)
+    script = os.path.join(ROOT, "scripts", "plot_uncertainty.py")
+    result = subprocess.run(["/usr/bin/python3", script, str(out), "--gt", GT, "--object", "1"],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert (out / "uncertainty.png").stat().st_size > 10000
+    missing = subprocess.run(["/usr/bin/python3", script, str(tmp_path), "--gt", GT],
+                             capture_output=True, text=True)
+    assert missing.returncode != 0 and "no solution.g2o" in missing.stderr
