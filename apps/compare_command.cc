@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -28,6 +29,8 @@
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
+#include "dynslam/consistency.h"
+#include "dynslam/covariance.h"
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
@@ -57,6 +60,7 @@ struct Row {
   SolveReport report;
   std::optional<Metrics> metrics;  // with ground truth
   bool reused = false;             // --resume: read back from an earlier run's outputs
+  std::optional<Consistency> consistency;  // --covariance with ground truth
 };
 
 // The row of `formulation` as built: its sizes, before any solve.
@@ -128,6 +132,36 @@ void TablesWithoutGroundTruth(const std::vector<Row>& rows, std::string* markdow
   *csv = out.str();
 }
 
+// With --covariance: each formulation's mean NEES against its 95 % band (consistency.h), rows of
+// table "NEES" in the CSV. Nothing without covariances.
+void NeesTable(const std::vector<Row>& rows, std::ostringstream* md, std::ostringstream* csv) {
+  if (std::none_of(rows.begin(), rows.end(), [](const Row& r) { return r.consistency; })) return;
+  *md << "### NEES: how honest each covariance is (expected 6; docs/COVARIANCE.md)\n\n"
+      << "| formulation | camera | band | object motion | band | object pose | band |\n"
+      << "|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    const char* f = FormulationName(r.formulation);
+    *md << "| " << f;
+    for (const NeesMean Consistency::*family :
+         {&Consistency::camera, &Consistency::object_motion, &Consistency::object_pose}) {
+      if (!r.consistency || (*r.consistency.*family).count == 0) {
+        *md << " | – | –";
+        continue;
+      }
+      const NeesMean& n = *r.consistency.*family;
+      *md << " | " << Fixed(n.mean, 2) << " | " << Fixed(n.band_low, 2) << "–"
+          << Fixed(n.band_high, 2);
+    }
+    *md << " |\n";
+    if (r.consistency) {
+      *csv << "NEES," << f << ",,camera," << r.consistency->camera.mean << "\n"
+           << "NEES," << f << ",,object_motion," << r.consistency->object_motion.mean << "\n"
+           << "NEES," << f << ",,object_pose," << r.consistency->object_pose.mean << "\n";
+    }
+  }
+  *md << "\n";
+}
+
 // Tables I–III as Markdown, and the same numbers as CSV (table,formulation,object,quantity,value).
 // Every row has metrics.
 void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* csv) {
@@ -194,6 +228,7 @@ void Tables(const std::vector<Row>& rows, std::string* markdown, std::string* cs
   };
   object_table("Table II: object motion error", "II", &Metrics::object_motion);
   object_table("Table III: object pose error", "III", &Metrics::object_pose);
+  NeesTable(rows, &md, &out);
   *markdown = md.str();
   *csv = out.str();
 }
@@ -321,6 +356,8 @@ struct RunSettings {
   fs::path out_dir;
   std::string front_end_name;
   bool resume = false;
+  std::string covariance_kinds;  // --covariance, as given
+  std::vector<CovarianceKind> covariance;
 };
 
 // True when the file at `path` holds exactly `text`, read a megabyte at a time (a paper-scale
@@ -440,6 +477,17 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
                                    : "no ground truth: no metrics; each segment's first object "
                                      "pose started by the centroid rule (SPEC §3.3)");
   }
+  Expected<CovarianceReport> covariance = Error{};
+  if (!run.covariance.empty() && row.report.usable) {
+    covariance = ComputeCovariances(*graph, row.report, VerticesOfKinds(*graph, run.covariance));
+    if (!covariance.ok()) return fail(covariance.error());
+    outputs.covariance = &*covariance;
+    outputs.covariance_kinds = run.covariance_kinds;
+    if (gt && covariance->weak_directions.empty()) {
+      row.consistency = ComputeConsistency(*graph, *covariance, *gt);
+      outputs.consistency = row.consistency;
+    }
+  }
   if (Status s = WriteSolveOutputs(dir.string(), outputs); !s.ok()) {
     return fail(s.error());
   }
@@ -486,6 +534,12 @@ int RunCompare(int argc, char** argv) {
                    "(SPEC §3.5; wc must come first in --formulations; their steps and times then "
                    "add to wc's)");
   bool resume = false;
+  std::string covariance_kinds;
+  parser.AddString("covariance", &covariance_kinds,
+                   "also each formulation's marginal covariances of these kinds "
+                   "(<f>/covariances.csv, as `solve --covariance`) and, with --gt, a NEES table "
+                   "of how honest they are (docs/COVARIANCE.md); not with --resume",
+                   "KIND,...");
   parser.AddFlag("resume", &resume,
                  "reuse each formulation's finished solve already in DIR (the same built graph "
                  "and solver options, ended by convergence or the step limit) instead of solving "
@@ -510,6 +564,18 @@ int RunCompare(int argc, char** argv) {
       return kExitBadInput;
     }
     formulations.push_back(f);
+  }
+  std::vector<CovarianceKind> covariance;
+  std::string bad_kind;
+  if (parser.Given("covariance") && !ParseCovarianceKinds(covariance_kinds, &covariance, &bad_kind)) {
+    std::cerr << "error: --covariance: unknown kind '" << bad_kind
+              << "' (cameras, motions, object_poses, points, all)\n";
+    return kExitBadInput;
+  }
+  if (!covariance.empty() && resume) {
+    std::cerr << "error: --covariance and --resume: a solve read back has no covariances; give "
+                 "one of them\n";
+    return kExitBadInput;
   }
   const bool start_wc = start == "wc";
   if (start_wc && (formulations.empty() || formulations[0] != Formulation::kWorldCentric)) {
@@ -549,6 +615,8 @@ int RunCompare(int argc, char** argv) {
   run.out_dir = out_dir;
   run.front_end_name = fs::path(front_end_path).filename().string();
   run.resume = resume;
+  run.covariance_kinds = covariance_kinds;
+  run.covariance = covariance;
   std::vector<Row> rows;
   const auto started = std::chrono::steady_clock::now();
   Graph world_centric;  // wc's solution, with --start wc

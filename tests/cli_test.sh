@@ -221,6 +221,15 @@ else
   failed=$((failed + 1)); echo "FAIL: an earlier solve's covariances.csv was left beside a solve without --covariance"
 fi
 
+check "compare --covariance with --gt" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/cmp_cov" --formulations wc,oc_b --no-plots --covariance cameras,motions,object_poses
+if grep -q "^### NEES" "$work/cmp_cov/tables.md" && grep -q "^NEES,oc_b,,object_pose," "$work/cmp_cov/tables.csv" && [ -s "$work/cmp_cov/oc_b/covariances.csv" ]; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: compare --covariance wrote no NEES table or covariances.csv"
+fi
+check "compare --covariance with --resume" 2 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/cmp_cov" --covariance all --resume
+expect_output "the conflict is named" "covariance and --resume"
+
 # The huge-page heap (apps/huge_page_heap.h) changes where blocks live, never what is computed.
 check "solve with the huge-page heap" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_on" --max-iterations 5
 check "solve without it" 0 env DYNSLAM_HUGE_PAGES=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_off" --max-iterations 5
