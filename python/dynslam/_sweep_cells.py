@@ -36,11 +36,11 @@ def _problem(result, what):
     return f"{what} exited {result.returncode}: {lines[-1] if lines else 'no message'}"
 
 
-def simulate(out_dir, scene, seed, frames, density, kitti, cli):
+def simulate(out_dir, scene, seed, frames, density, kitti):
     """Writes DIR/cells/<scene>_s<seed>/frontend.{g2o,gt.txt} (and simulate.txt, the command's
     statistics) unless both are there; returns their paths, or raises RuntimeError with the
-    command's message. `cli` None: this worker's own dynslam command (_sweep_tools.find_cli)."""
-    cli = cli or find_cli()
+    command's message. The dynslam command is this worker's own (_sweep_tools.find_cli)."""
+    cli = find_cli()
     os.makedirs(out_dir, exist_ok=True)
     prefix = os.path.join(out_dir, "frontend")
     if os.path.isfile(prefix + ".g2o") and os.path.isfile(prefix + ".gt.txt"):
@@ -68,16 +68,14 @@ def _version(cli):
     return result.stdout.strip() if result.returncode == 0 else ""
 
 
-def run_cell(frontend, sweep_dir, cell, flags, cli):
+def run_cell(frontend, sweep_dir, cell, flags):
     """Builds and solves one cell in DIR/<cell.cell_dir>; returns its row of the results
-    database (status 'ok', 'interrupted' or 'failed'). `cli` as for simulate."""
-    cli = cli or find_cli()
+    database (status 'ok', 'interrupted' or 'failed'). The dynslam command as for simulate."""
+    cli = find_cli()
     graph_path, gt_path = frontend
     cell_dir = os.path.join(sweep_dir, cell.cell_dir)
     os.makedirs(cell_dir, exist_ok=True)
-    row = {"scene": cell.scene, "seed": cell.seed, "formulation": cell.formulation,
-           "options": cell.options, "cell_dir": cell.cell_dir, "host": socket.gethostname(),
-           "version": _version(cli), "status": "failed", "error": ""}
+    row = cell.row(host=socket.gethostname(), version=_version(cli), status="failed", error="")
     started = time.monotonic()
     built = os.path.join(cell_dir, "graph.g2o")
     temporary = os.path.join(cell_dir, f".graph-{uuid.uuid4().hex}.g2o")

@@ -38,6 +38,16 @@ class Cell:
         return os.path.join("cells", f"{self.scene}_s{self.seed}")
 
     @property
+    def key(self):
+        """(scene, seed, formulation, options): the results database's key."""
+        return (self.scene, self.seed, self.formulation, self.options)
+
+    def row(self, **columns):
+        """The cell's row of the results database: its key, its directory and `columns`."""
+        return {"scene": self.scene, "seed": self.seed, "formulation": self.formulation,
+                "options": self.options, "cell_dir": self.cell_dir, **columns}
+
+    @property
     def cell_dir(self):
         """Relative to the sweep's directory; the option set 'default' adds no suffix."""
         name = self.formulation if self.options == "default" else f"{self.formulation}_{self.options}"
@@ -61,9 +71,9 @@ class Sweep:
                 for name in self.options for formulation in self.formulations]
 
 
-def load(path, cli=None, kitti=None):
-    """Reads and checks the sweep file at `path`; `cli` is the dynslam command that checks the
-    option sets (found by _sweep_tools.find_cli when None); `kitti` overrides the data."""
+def load(path, kitti=None):
+    """Reads and checks the sweep file at `path` (its option sets by this machine's dynslam
+    command, _sweep_tools.find_cli); `kitti` overrides the data."""
     try:
         with open(path, "rb") as f:
             table = tomllib.load(f)
@@ -95,8 +105,8 @@ def load(path, cli=None, kitti=None):
             if scene not in PAPER_SEQUENCES:
                 raise SweepFileError(path, "density", f"'paper' is the density of the paper's "
                                      f"sequences ({', '.join(PAPER_SEQUENCES)}), not of {scene!r}")
-    cli = cli or _sweep_tools.find_cli()
-    sweep.options = _option_sets(path, table.get("options", {"default": {}}), cli)
+    sweep.options = _option_sets(path, table.get("options", {"default": {}}),
+                                 _sweep_tools.find_cli())
     return sweep
 
 

@@ -56,9 +56,7 @@ class Progress:
 
 
 def _failed_row(cell, error):
-    return {"scene": cell.scene, "seed": cell.seed, "formulation": cell.formulation,
-            "options": cell.options, "cell_dir": cell.cell_dir, "status": "failed",
-            "error": str(error)}
+    return cell.row(status="failed", error=str(error))
 
 
 def _client(scheduler, workers):
@@ -76,7 +74,7 @@ def _unique_key(*parts):
 def _simulate(client, sweep, out, cell):
     """The front end of `cell`'s scene and seed."""
     return client.submit(_sweep_cells.simulate, os.path.join(out, cell.scene_dir), cell.scene,
-                         cell.seed, sweep.frames, sweep.density, sweep.kitti, None, pure=False,
+                         cell.seed, sweep.frames, sweep.density, sweep.kitti, pure=False,
                          key=_unique_key("simulate", cell.scene, f"s{cell.seed}"))
 
 
@@ -85,7 +83,7 @@ def _cells(client, sweep, out, frontend, cells):
     on the shared DIR, so no task depends on another (Dask 2022.12's scheduler could stall when
     a worker holding a dependency died)."""
     return {client.submit(_sweep_cells.run_cell, frontend, out, cell,
-                          sweep.options[cell.options], None, pure=False,
+                          sweep.options[cell.options], pure=False,
                           key=_unique_key("cell", cell.scene, f"s{cell.seed}", cell.formulation,
                                           cell.options)): cell
             for cell in cells}
@@ -146,7 +144,7 @@ def run(sweep, out, scheduler=None, workers=None):
     results = Results(os.path.join(out, "results.sqlite"))
     finished = results.finished()
     cells = [c for c in sweep.cells()
-             if (c.scene, c.seed, c.formulation, c.options) not in finished]
+             if c.key not in finished]
     total = len(sweep.cells())
     print(f"sweep {sweep.path}: {total} cells, {total - len(cells)} finished before, "
           f"{len(cells)} to run", file=sys.stderr)
@@ -165,7 +163,7 @@ def run(sweep, out, scheduler=None, workers=None):
                 cluster.close()
     results.write_csv(os.path.join(out, "results.csv"))
     rows = results.rows()
-    keys = {(c.scene, c.seed, c.formulation, c.options) for c in sweep.cells()}
+    keys = {c.key for c in sweep.cells()}
     ok = len(results.finished() & keys)  # of this sweep's cells (DIR may hold others)
     results.close()
     report = _sweep_report.write(out, rows)
