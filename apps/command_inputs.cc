@@ -1,5 +1,7 @@
 #include "command_inputs.h"
 
+#include "dynslam/consistency.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +19,31 @@ bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>*
   }
   *gt = std::move(read).value();
   return true;
+}
+
+bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<CovarianceKind>* kinds) {
+  kinds->clear();
+  if (!given) return true;
+  if (std::optional<std::string> problem = ParseCovarianceKinds(text, kinds)) {
+    std::cerr << "error: --covariance: " << *problem << "\n";
+    return false;
+  }
+  return true;
+}
+
+Status AttachCovariances(const Graph& solved, const SolveReport& report,
+                         const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
+                         CovarianceReport* covariance, SolveOutputs* outputs) {
+  Expected<CovarianceReport> computed =
+      ComputeCovariances(solved, report, VerticesOfKinds(solved, kinds));
+  if (!computed.ok()) return computed.error();
+  *covariance = std::move(computed).value();
+  outputs->covariance = covariance;
+  outputs->covariance_kinds = kinds_text;
+  if (outputs->ground_truth != nullptr && covariance->weak_directions.empty()) {
+    outputs->consistency = ComputeConsistency(solved, *covariance, *outputs->ground_truth);
+  }
+  return Status::Ok();
 }
 
 std::string EmbeddedKittiDir() {

@@ -29,8 +29,6 @@
 #include "compat_flags.h"
 #include "export_flags.h"
 #include "commands.h"
-#include "dynslam/consistency.h"
-#include "dynslam/covariance.h"
 #include "dynslam/file_io.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
@@ -477,16 +475,14 @@ std::optional<Row> SolveFormulation(const Graph& front_end, Formulation formulat
                                    : "no ground truth: no metrics; each segment's first object "
                                      "pose started by the centroid rule (SPEC §3.3)");
   }
-  Expected<CovarianceReport> covariance = Error{};
+  CovarianceReport covariance;
   if (!run.covariance.empty() && row.report.usable) {
-    covariance = ComputeCovariances(*graph, row.report, VerticesOfKinds(*graph, run.covariance));
-    if (!covariance.ok()) return fail(covariance.error());
-    outputs.covariance = &*covariance;
-    outputs.covariance_kinds = run.covariance_kinds;
-    if (gt && covariance->weak_directions.empty()) {
-      row.consistency = ComputeConsistency(*graph, *covariance, *gt);
-      outputs.consistency = row.consistency;
+    if (Status s = AttachCovariances(*graph, row.report, run.covariance, run.covariance_kinds,
+                                     &covariance, &outputs);
+        !s.ok()) {
+      return fail(s.error());
     }
+    row.consistency = outputs.consistency;
   }
   if (Status s = WriteSolveOutputs(dir.string(), outputs); !s.ok()) {
     return fail(s.error());
@@ -566,10 +562,7 @@ int RunCompare(int argc, char** argv) {
     formulations.push_back(f);
   }
   std::vector<CovarianceKind> covariance;
-  std::string bad_kind;
-  if (parser.Given("covariance") && !ParseCovarianceKinds(covariance_kinds, &covariance, &bad_kind)) {
-    std::cerr << "error: --covariance: unknown kind '" << bad_kind
-              << "' (cameras, motions, object_poses, points, all)\n";
+  if (!CovarianceKindsOfFlag(parser.Given("covariance"), covariance_kinds, &covariance)) {
     return kExitBadInput;
   }
   if (!covariance.empty() && resume) {

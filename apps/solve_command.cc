@@ -55,17 +55,14 @@ void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
   std::printf("outputs: %s\n", out_dir.c_str());
 }
 
-// Why the covariances could not be computed (the other outputs are written all the same).
-std::optional<std::string> CovarianceProblem(const Expected<CovarianceReport>& covariance,
-                                             const Graph& graph) {
-  if (!covariance.ok()) return covariance.error().ToString();
-  const std::vector<WeakDirection>& weak = covariance->weak_directions;
-  if (weak.empty()) return std::nullopt;
-  const WeakDirection& first = weak.front();
-  return "the information matrix is singular along " + std::to_string(weak.size()) +
+// The error printed when the covariances could not be computed (the other outputs are written
+// all the same).
+std::string SingularMessage(const CovarianceReport& covariance, const Graph& graph) {
+  const WeakDirection& first = covariance.weak_directions.front();
+  return "the information matrix is singular along " +
+         std::to_string(covariance.weak_directions.size()) +
          " directions (weakly determined variables; first: vertex " + std::to_string(first.id) +
-         " " + ComponentName(graph.vertices.at(first.id).type, first.component) +
-         "): no covariances.csv; summary.json lists them";
+         " " + DirectionName(graph, first) + "): no covariances.csv; summary.json lists them";
 }
 
 }  // namespace
@@ -113,10 +110,7 @@ int RunSolve(int argc, char** argv) {
   SolverOptions options;
   if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
   std::vector<CovarianceKind> kinds;
-  std::string bad_kind;
-  if (parser.Given("covariance") && !ParseCovarianceKinds(covariance_kinds, &kinds, &bad_kind)) {
-    std::cerr << "error: --covariance: unknown kind '" << bad_kind
-              << "' (cameras, motions, object_poses, points, all)\n";
+  if (!CovarianceKindsOfFlag(parser.Given("covariance"), covariance_kinds, &kinds)) {
     return kExitBadInput;
   }
   if (check_options) return kExitOk;
@@ -170,14 +164,14 @@ int RunSolve(int argc, char** argv) {
     outputs.metrics = ComputeMetrics(*graph, *ground_truth);
   }
   std::optional<std::string> covariance_problem;
-  Expected<CovarianceReport> covariance = Error{};
+  CovarianceReport covariance;
   if (!kinds.empty() && report->usable) {
-    covariance = ComputeCovariances(*graph, *report, VerticesOfKinds(*graph, kinds));
-    covariance_problem = CovarianceProblem(covariance, *graph);
-    if (covariance.ok()) {
-      outputs.covariance = &*covariance;
-      outputs.covariance_kinds = covariance_kinds;
-      if (ground_truth) outputs.consistency = ComputeConsistency(*graph, *covariance, *ground_truth);
+    const Status s =
+        AttachCovariances(*graph, *report, kinds, covariance_kinds, &covariance, &outputs);
+    if (!s.ok()) {
+      covariance_problem = s.error().ToString();
+    } else if (!covariance.weak_directions.empty()) {
+      covariance_problem = SingularMessage(covariance, *graph);
     }
   }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {

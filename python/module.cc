@@ -162,11 +162,9 @@ struct PySolveReport {
       wanted = ids.cast<std::vector<VertexId>>();
     } else {
       std::vector<CovarianceKind> parsed;
-      std::string bad;
       const std::string text = kinds.is_none() ? "all" : kinds.cast<std::string>();
-      if (!ParseCovarianceKinds(text, &parsed, &bad)) {
-        throw py::value_error("kinds: unknown kind '" + bad +
-                              "' (cameras, motions, object_poses, points, all)");
+      if (std::optional<std::string> problem = ParseCovarianceKinds(text, &parsed)) {
+        throw py::value_error("kinds: " + *problem);
       }
       wanted = VerticesOfKinds(graph, parsed);
     }
@@ -182,8 +180,7 @@ struct PySolveReport {
     if (const auto& weak = computed->weak_directions; !weak.empty()) {
       std::string names;
       for (const WeakDirection& w : weak) {
-        names += (names.empty() ? "" : ", ") + std::to_string(w.id) + " " +
-                 ComponentName(graph.vertices.at(w.id).type, w.component);
+        names += (names.empty() ? "" : ", ") + std::to_string(w.id) + " " + DirectionName(graph, w);
       }
       py::object error = py::module_::import("numpy.linalg").attr("LinAlgError");
       PyErr_SetString(error.ptr(), ("the information matrix is singular along " +

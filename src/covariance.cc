@@ -71,21 +71,24 @@ bool Parse(const std::string& text, CovarianceKind* kind) {
   return false;
 }
 
-bool ParseCovarianceKinds(const std::string& text, std::vector<CovarianceKind>* kinds,
-                          std::string* bad) {
+std::optional<std::string> ParseCovarianceKinds(const std::string& text,
+                                                std::vector<CovarianceKind>* kinds) {
   kinds->clear();
   std::stringstream items(text);
   std::string item;
-  while (std::getline(items, item, ',')) {
+  std::optional<std::string> unknown;
+  while (!unknown && std::getline(items, item, ',')) {
     CovarianceKind kind;
-    if (!Parse(item, &kind)) {
-      *bad = item;
-      return false;
+    if (Parse(item, &kind)) {
+      kinds->push_back(kind);
+    } else {
+      unknown = item;
     }
-    kinds->push_back(kind);
   }
-  if (kinds->empty()) *bad = text;
-  return !kinds->empty();
+  if (!unknown && !kinds->empty()) return std::nullopt;
+  std::string names;
+  for (const CovarianceKind k : kKinds) names += std::string(names.empty() ? "" : ", ") + Name(k);
+  return "unknown kind '" + unknown.value_or(text) + "' (" + names + ")";
 }
 
 std::vector<VertexId> VerticesOfKinds(const Graph& graph,
@@ -104,10 +107,11 @@ std::vector<VertexId> VerticesOfKinds(const Graph& graph,
   return ids;
 }
 
-std::string ComponentName(VertexType type, int component) {
+std::string DirectionName(const Graph& graph, const WeakDirection& direction) {
   static const char* const kPose[] = {"omega_x", "omega_y", "omega_z", "rho_x", "rho_y", "rho_z"};
   static const char* const kPoint[] = {"x", "y", "z"};
-  return type == VertexType::kPose ? kPose[component] : kPoint[component];
+  return graph.vertices.at(direction.id).type == VertexType::kPose ? kPose[direction.component]
+                                                                   : kPoint[direction.component];
 }
 
 Expected<CovarianceReport> ComputeCovariances(const Graph& solved, const SolveReport& report,
@@ -131,14 +135,8 @@ Expected<CovarianceReport> ComputeCovariances(const Graph& solved, const SolveRe
   std::vector<bool> keep_column(static_cast<size_t>(system->first_column.back()), true);
   std::map<VertexId, size_t> variable_of;
   for (size_t v = 0; v < system->variables.size(); ++v) variable_of[system->variables[v]] = v;
-  // Held constant by the solve (unused vertices, --fix-first) or by their role (hy's embedded
-  // frames, graph_schema.h): Ceres gives them Jacobian columns of zeros, not variables.
-  std::vector<VertexId> constant = report.held_constant;
-  for (const VertexId id : system->variables) {
-    const RoleInfo* info = InfoOf(solved.vertices.at(id).label.role);
-    if (info != nullptr && info->constant) constant.push_back(id);
-  }
-  for (const VertexId id : constant) {
+  // Held constant by the solve (--fix-first's pose; EvaluateJacobian leaves out the others).
+  for (const VertexId id : report.held_constant) {
     auto it = variable_of.find(id);
     if (it == variable_of.end()) continue;
     for (int c = system->first_column[it->second]; c < system->first_column[it->second + 1]; ++c) {

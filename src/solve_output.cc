@@ -82,8 +82,7 @@ JsonValue CovarianceJson(const SolveOutputs& outputs) {
   JsonValue weak = JsonValue::array();
   for (const WeakDirection& w : c.weak_directions) {
     weak.push_back({{"id", w.id},
-                    {"direction", ComponentName(outputs.solved->vertices.at(w.id).type,
-                                                w.component)}});
+                    {"direction", DirectionName(*outputs.solved, w)}});
   }
   return {{"kinds", outputs.covariance_kinds},
           {"variables", c.marginals.size()},

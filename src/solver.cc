@@ -819,6 +819,8 @@ Expected<SystemJacobian> EvaluateJacobian(const Graph& graph, const SolverOption
   ceres::Problem::EvaluateOptions evaluate_options;
   out.first_column.push_back(0);
   for (const Assembly::Variable& v : assembly.Variables(options.eliminate_object_points)) {
+    // Ceres would give a constant block columns of zeros.
+    if (assembly.problem().IsParameterBlockConstant(v.block)) continue;
     evaluate_options.parameter_blocks.push_back(v.block);
     out.variables.push_back(v.id);
     out.eliminated_first.push_back(v.eliminated_first);

@@ -134,12 +134,11 @@ TEST(CovarianceTest, Kitti0003ObjectCentricANamesItsWeakDirections) {
 
 TEST(CovarianceTest, KindsParseAndUnknownOnesAreNamed) {
   std::vector<CovarianceKind> kinds;
-  std::string bad;
-  EXPECT_TRUE(ParseCovarianceKinds("cameras,motions", &kinds, &bad));
+  EXPECT_EQ(ParseCovarianceKinds("cameras,motions", &kinds), std::nullopt);
   EXPECT_EQ(kinds, (std::vector<CovarianceKind>{CovarianceKind::kCameras, CovarianceKind::kMotions}));
-  EXPECT_FALSE(ParseCovarianceKinds("cameras,poses", &kinds, &bad));
-  EXPECT_EQ(bad, "poses");
-  EXPECT_FALSE(ParseCovarianceKinds("", &kinds, &bad));
+  EXPECT_EQ(ParseCovarianceKinds("cameras,poses", &kinds),
+            "unknown kind 'poses' (cameras, motions, object_poses, points, all)");
+  EXPECT_NE(ParseCovarianceKinds("", &kinds), std::nullopt);
 }
 
 // hy's embedded frames are constant by their role: no columns of zeros that would make every

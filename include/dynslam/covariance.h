@@ -6,6 +6,7 @@
 #ifndef DYNSLAM_COVARIANCE_H_
 #define DYNSLAM_COVARIANCE_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,9 +23,10 @@ namespace dynslam {
 enum class CovarianceKind { kCameras, kMotions, kObjectPoses, kPoints, kAll };
 const char* Name(CovarianceKind kind);
 bool Parse(const std::string& text, CovarianceKind* kind);
-// "cameras,motions" → kinds; false (and `bad` set) for an unknown or empty name.
-bool ParseCovarianceKinds(const std::string& text, std::vector<CovarianceKind>* kinds,
-                          std::string* bad);
+// "cameras,motions" → kinds; for an unknown or empty name, the problem ("unknown kind 'poses'
+// (cameras, motions, object_poses, points, all)") and `kinds` unspecified.
+std::optional<std::string> ParseCovarianceKinds(const std::string& text,
+                                                std::vector<CovarianceKind>* kinds);
 // The vertices of `graph` of those kinds, ascending.
 std::vector<VertexId> VerticesOfKinds(const Graph& graph, const std::vector<CovarianceKind>& kinds);
 
@@ -40,8 +42,8 @@ struct WeakDirection {
   VertexId id = 0;
   int component = 0;  // 0–5: ω_x, ω_y, ω_z, ρ_x, ρ_y, ρ_z of a pose; 0–2: x, y, z of a point
 };
-// "omega_z", "rho_x", "x", … for a direction of a vertex of `type`.
-std::string ComponentName(VertexType type, int component);
+// "omega_z", "rho_x", "x", … : the tangent component `direction` names, on its vertex of `graph`.
+std::string DirectionName(const Graph& graph, const WeakDirection& direction);
 
 struct CovarianceReport {
   std::vector<MarginalCovariance> marginals;  // the requested variables, ascending id

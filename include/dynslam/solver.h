@@ -220,8 +220,9 @@ Expected<CostByKind> EvaluateCost(const Graph& graph, const SolverOptions& optio
 // tangent space of each variable (6 columns for a pose, [ω; ρ] as SE3Manifold; 3 for a point),
 // as the solver sees it (with world_anchored_object_points, an object-frame point's columns are
 // those of w = L_a · m_L). Columns are grouped by variable in ascending vertex id; vertices in no
-// edge have no columns. For analysis and benchmarks (the factorisation floor of
-// docs/BENCHMARKS.md).
+// edge and vertices constant by their role (hy's embedded frames) are not variables and have no
+// columns. For analysis, benchmarks (the factorisation floor of docs/BENCHMARKS.md) and the
+// information matrix of covariance.h.
 struct SystemJacobian {
   Eigen::SparseMatrix<double, Eigen::RowMajor> jacobian;
   std::vector<VertexId> variables;  // the vertex of each column group, ascending
