@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "build_flags.h"
+#include "solver_flags.h"
 #include "cli.h"
 #include "command_inputs.h"
 #include "compat_flags.h"
@@ -20,6 +20,9 @@ int RunBuild(int argc, char** argv) {
                    "Builds one formulation (SPEC §3) from a front-end file and writes it as a graph\n"
                    "file (SPEC §3.4 order, full labels) that `dynslam solve` or any other solver reads.\n"
                    "Prints what was kept and dropped.");
+  parser.AddExample("dynslam build scene.g2o --formulation oc_b --gt scene.gt.txt --out oc_b.g2o");
+  parser.AddExample("dynslam build scene.g2o --formulation hy --hybrid-smoothing-info world --out hy.g2o");
+  parser.Group("input and output");
   parser.AddPositional("FRONTEND.g2o", &front_end_path, "front-end graph file (SPEC §1.2, labels optional)");
   parser.AddChoice("formulation", &formulation_name, FormulationChoices(),
                    "world-centric, object-centric variant (paper Figs. 2 and 3) or hybrid "
@@ -35,7 +38,7 @@ int RunBuild(int argc, char** argv) {
                    "front end (`dynslam solve`'s solution.g2o), the edges from the front end "
                    "(SPEC §3.5 start wc)",
                    "WC_SOLUTION.g2o");
-  BuildFlags build_flags(&parser);
+  BuildFlags build_flags(&parser, BuildOptionTable());
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   if (ReportedProblem(compat.Finish())) return kExitBadInput;

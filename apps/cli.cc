@@ -1,39 +1,25 @@
 #include "cli.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
 namespace dynslam::cli {
 namespace {
 
-std::string FormatDouble(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g", value);
-  return buffer;
-}
-
-std::optional<int64_t> ParseInt(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size()) return std::nullopt;
-  return static_cast<int64_t>(value);
-}
-
-std::optional<double> ParseDouble(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (errno != 0 || end != text.c_str() + text.size() || !std::isfinite(value)) {
-    return std::nullopt;
+// `text` in lines of at most `width` characters (longer words stay whole), each indented.
+std::string Wrapped(const std::string& text, size_t indent, size_t width) {
+  std::istringstream words(text);
+  std::string out, line, word;
+  while (words >> word) {
+    if (!line.empty() && indent + line.size() + 1 + word.size() > width) {
+      out += std::string(indent, ' ') + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
   }
-  return value;
+  if (!line.empty()) out += std::string(indent, ' ') + line + "\n";
+  return out;
 }
 
 }  // namespace
@@ -46,66 +32,72 @@ bool ReportedProblem(const std::optional<std::string>& problem) {
 ArgParser::ArgParser(std::string usage, std::string description)
     : usage_(std::move(usage)), description_(std::move(description)) {}
 
+void ArgParser::Add(Option option) {
+  option.group = group_;
+  options_.push_back(std::move(option));
+}
+
 void ArgParser::AddFlag(const std::string& name, bool* target, const std::string& help) {
-  options_.push_back({name, "", help, *target ? "on" : "off",
-                      [target](const std::string&) -> std::optional<std::string> {
-                        *target = true;
-                        return std::nullopt;
-                      }});
+  Add({name, "", help, *target ? "on" : "off", [target](const std::string&) {
+         *target = true;
+         return std::optional<std::string>();
+       }});
+}
+
+void ArgParser::AddValue(const std::string& name, const std::string& metavar,
+                         const std::string& help, const std::string& default_text,
+                         std::function<std::optional<std::string>(const std::string&)> set) {
+  Add({name, metavar, help, default_text, std::move(set)});
+}
+
+void ArgParser::AddSwitch(const std::string& name, const std::string& help,
+                          const std::string& default_text,
+                          std::function<std::optional<std::string>(const std::string&)> set) {
+  Option option{name, "[on|off]", help, default_text, std::move(set)};
+  option.value_optional = true;
+  Add(std::move(option));
+}
+
+void ArgParser::AddAlias(const std::string& name, const std::string& alias) {
+  if (Option* option = FindOption(name)) option->aliases.push_back(alias);
 }
 
 void ArgParser::AddString(const std::string& name, std::string* target, const std::string& help,
                           const std::string& metavar) {
-  options_.push_back({name, metavar, help, target->empty() ? "none" : *target,
-                      [target](const std::string& value) -> std::optional<std::string> {
-                        *target = value;
-                        return std::nullopt;
-                      }});
+  AddValue(name, metavar, help, target->empty() ? "none" : *target, [target](const std::string& value) {
+    *target = value;
+    return std::optional<std::string>();
+  });
 }
 
 void ArgParser::AddChoice(const std::string& name, std::string* target,
                           const std::vector<std::string>& choices, const std::string& help) {
   std::string metavar;
   for (const std::string& choice : choices) metavar += (metavar.empty() ? "" : "|") + choice;
-  options_.push_back({name, metavar, help, *target,
-                      [target, choices, metavar](const std::string& value)
-                          -> std::optional<std::string> {
-                        for (const std::string& choice : choices) {
-                          if (value == choice) {
-                            *target = value;
-                            return std::nullopt;
-                          }
-                        }
-                        return "'" + value + "' is not one of " + metavar;
-                      }});
+  AddValue(name, metavar, help, *target,
+           [target, choices, metavar](const std::string& value) -> std::optional<std::string> {
+             for (const std::string& choice : choices) {
+               if (value == choice) {
+                 *target = value;
+                 return std::nullopt;
+               }
+             }
+             return "'" + value + "' is not one of " + metavar;
+           });
 }
 
 void ArgParser::AddInt(const std::string& name, int64_t* target, const std::string& help,
                        int64_t min_value, int64_t max_value) {
-  options_.push_back({name, "N", help, std::to_string(*target),
-                      [=](const std::string& value) -> std::optional<std::string> {
-                        const std::optional<int64_t> parsed = ParseInt(value);
-                        if (!parsed || *parsed < min_value || *parsed > max_value) {
-                          return "'" + value + "' is not a whole number from " +
-                                 std::to_string(min_value) + " to " + std::to_string(max_value);
-                        }
-                        *target = *parsed;
-                        return std::nullopt;
-                      }});
+  AddValue(name, "N", help, std::to_string(*target), [=](const std::string& value) {
+    return ParseInteger(value, min_value, max_value, target);
+  });
 }
 
 void ArgParser::AddDouble(const std::string& name, double* target, const std::string& help,
                           double min_value, double max_value) {
-  options_.push_back({name, "X", help, FormatDouble(*target),
-                      [=](const std::string& value) -> std::optional<std::string> {
-                        const std::optional<double> parsed = ParseDouble(value);
-                        if (!parsed || *parsed < min_value || *parsed > max_value) {
-                          return "'" + value + "' is not a number from " +
-                                 FormatDouble(min_value) + " to " + FormatDouble(max_value);
-                        }
-                        *target = *parsed;
-                        return std::nullopt;
-                      }});
+  AddValue(name, "X", help, RealText(*target), [=](const std::string& value) {
+    return ParseReal(value, min_value, max_value, target);
+  });
 }
 
 void ArgParser::AddPositional(const std::string& name, std::string* target,
@@ -116,6 +108,9 @@ void ArgParser::AddPositional(const std::string& name, std::string* target,
 ArgParser::Option* ArgParser::FindOption(const std::string& name) {
   for (Option& option : options_) {
     if (option.name == name) return &option;
+    for (const std::string& alias : option.aliases) {
+      if (alias == name) return &option;
+    }
   }
   return nullptr;
 }
@@ -150,7 +145,13 @@ std::optional<int> ArgParser::Parse(int argc, char** argv, int first) {
       Option* option = FindOption(name);
       if (option == nullptr) return usage_error("unknown option --" + name);
       std::string value;
-      if (!option->metavar.empty()) {
+      if (option->value_optional) {
+        const auto is_switch_value = [](const std::string& text) {
+          return text == "on" || text == "off" || text == "true" || text == "false";
+        };
+        value = inline_value ? *inline_value : "on";
+        if (!inline_value && i + 1 < argc && is_switch_value(argv[i + 1])) value = argv[++i];
+      } else if (!option->metavar.empty()) {
         if (inline_value) {
           value = *inline_value;
         } else if (i + 1 < argc) {
@@ -187,13 +188,28 @@ std::string ArgParser::Help() const {
       out << "  " << positional.name << "\n      " << positional.help << "\n";
     }
   }
-  out << "\noptions:\n";
+  std::vector<std::string> groups;
   for (const Option& option : options_) {
-    out << "  --" << option.name;
-    if (!option.metavar.empty()) out << " " << option.metavar;
-    out << "\n      " << option.help << " (default: " << option.default_text << ")\n";
+    if (std::find(groups.begin(), groups.end(), option.group) == groups.end()) {
+      groups.push_back(option.group);
+    }
   }
+  for (const std::string& group : groups) {
+    out << "\n" << group << ":\n";
+    for (const Option& option : options_) {
+      if (option.group != group) continue;
+      out << "  --" << option.name;
+      if (!option.metavar.empty()) out << " " << option.metavar;
+      const std::string shown = option.default_text.empty() ? "none" : option.default_text;
+      out << "\n" << Wrapped(option.help + " (default: " + shown + ")", 6, 80);
+    }
+  }
+  out << "\n";
   out << "  --help\n      print this help and exit\n";
+  if (!examples_.empty()) {
+    out << "\nexamples:\n";
+    for (const std::string& example : examples_) out << "  " << example << "\n";
+  }
   return out.str();
 }
 

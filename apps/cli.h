@@ -7,7 +7,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "dynslam/options.h"
 
 namespace dynslam::cli {
 
@@ -27,6 +30,10 @@ class ArgParser {
   ArgParser(std::string usage, std::string description);
 
   void AddFlag(const std::string& name, bool* target, const std::string& help);
+  // An option with a value shown as `metavar`; `set` checks and takes it (error or nullopt).
+  void AddValue(const std::string& name, const std::string& metavar, const std::string& help,
+                const std::string& default_text,
+                std::function<std::optional<std::string>(const std::string&)> set);
   void AddString(const std::string& name, std::string* target, const std::string& help,
                  const std::string& metavar = "VALUE");
   void AddChoice(const std::string& name, std::string* target,
@@ -35,6 +42,15 @@ class ArgParser {
               int64_t min_value, int64_t max_value);
   void AddDouble(const std::string& name, double* target, const std::string& help,
                  double min_value, double max_value);
+  // An option whose value is optional (a switch: --name alone means on; --name on|off too).
+  void AddSwitch(const std::string& name, const std::string& help, const std::string& default_text,
+                 std::function<std::optional<std::string>(const std::string&)> set);
+  // The --help section of the options declared after this call (until the next).
+  void Group(std::string name) { group_ = std::move(name); }
+  // A command line shown under "examples:" at the end of --help.
+  void AddExample(std::string example) { examples_.push_back(std::move(example)); }
+  // Another spelling of the option `name` (declared before).
+  void AddAlias(const std::string& name, const std::string& alias);
   // Positionals in declaration order; optional ones must come last.
   void AddPositional(const std::string& name, std::string* target, const std::string& help,
                      bool required = true);
@@ -56,6 +72,9 @@ class ArgParser {
     std::string help;
     std::string default_text;
     std::function<std::optional<std::string>(const std::string&)> set;  // error or nullopt
+    std::string group;
+    bool value_optional = false;  // a switch
+    std::vector<std::string> aliases;
     bool given = false;
   };
   struct Positional {
@@ -67,10 +86,53 @@ class ArgParser {
 
   Option* FindOption(const std::string& name);
 
+  void Add(Option option);
+
   std::string usage_;
   std::string description_;
+  std::string group_ = "options";
+  std::vector<std::string> examples_;
   std::vector<Option> options_;
   std::vector<Positional> positionals_;
+};
+
+// The options of an option table (options.h) as flags: --name with '-' for '_', its aliases
+// too, under its group in --help, each value checked as it is parsed. Finish applies them.
+template <typename Options>
+class TableFlags {
+ public:
+  // `defaults` are the values the flags start from and --help shows.
+  TableFlags(ArgParser* parser, const OptionTable<Options>& table, Options defaults = {})
+      : table_(table), defaults_(std::move(defaults)) {
+    for (const Option<Options>& option : table_) {
+      parser->Group(option.group);
+      auto set = [this, &option](const std::string& text) {
+        Options scratch = defaults_;
+        std::optional<std::string> problem = option.set(text, &scratch);
+        if (!problem) given_.emplace_back(option.name, text);
+        return problem;
+      };
+      const std::string flag = FlagName(option.name);
+      if (option.type == OptionType::kSwitch) {
+        parser->AddSwitch(flag, option.help, option.get(defaults_), set);
+      } else {
+        parser->AddValue(flag, option.metavar, option.help, option.get(defaults_), set);
+      }
+      for (const std::string& alias : option.aliases) parser->AddAlias(flag, FlagName(alias));
+    }
+  }
+
+  // After a successful Parse: the defaults with the flags given applied, or a usage problem.
+  std::optional<std::string> Finish(Options* options) const {
+    *options = defaults_;
+    return ApplyOptions(table_, given_, [](const std::string& name) { return "--" + FlagName(name); },
+                        options);
+  }
+
+ private:
+  const OptionTable<Options>& table_;
+  Options defaults_;
+  std::vector<std::pair<std::string, std::string>> given_;
 };
 
 }  // namespace dynslam::cli

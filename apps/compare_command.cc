@@ -23,7 +23,7 @@
 #include <sstream>
 #include <vector>
 
-#include "build_flags.h"
+#include "solver_flags.h"
 #include "cli.h"
 #include "command_inputs.h"
 #include "compat_flags.h"
@@ -540,8 +540,8 @@ int RunCompare(int argc, char** argv) {
                  "reuse each formulation's finished solve already in DIR (the same built graph "
                  "and solver options, ended by convergence or the step limit) instead of solving "
                  "it again: a long compare that was stopped goes on from the next formulation");
-  BuildFlags build_flags(&parser);
-  SolverFlags solver_flags(&parser);
+  BuildFlags build_flags(&parser, BuildOptionTable());
+  SolverFlags solver_flags(&parser, SolverOptionTable());
   CompatFlags compat(&parser);
   ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;

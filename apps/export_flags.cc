@@ -5,6 +5,7 @@
 namespace dynslam::cli {
 
 ExportFlags::ExportFlags(ArgParser* parser) {
+  parser->Group("output");
   parser->AddString("export", &formats_text_,
                     "also write the camera's and each object's trajectory, estimated and (with "
                     "--gt) true, for evo: tum, kitti or tum,kitti (DIR/camera_estimate.tum.txt, "

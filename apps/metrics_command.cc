@@ -19,6 +19,8 @@ int RunMetrics(int argc, char** argv) {
                    "ground truth: camera relative pose error, object motion and object pose errors\n"
                    "with their counts (SPEC §5; paper Tables I-III). Prints JSON in the shape of\n"
                    "summary.json's `metrics`.");
+  parser.AddExample("dynslam metrics result/solution.g2o scene.gt.txt");
+  parser.AddExample("dynslam metrics result/solution.g2o scene.gt.txt --out metrics.json");
   parser.AddPositional("SOLVED.g2o", &solved_path, "labelled graph file at its solution");
   parser.AddPositional("GT", &gt_path, "ground-truth file (SPEC §2)");
   parser.AddString("out", &out_path, "also write the JSON to this file", "FILE");

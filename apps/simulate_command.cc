@@ -76,6 +76,9 @@ int RunSimulate(int argc, char** argv) {
       "Simulates a visual front end on real KITTI Tracking motion (oxts, label_02, calib) or on a\n"
       "small synthetic scene, and writes PREFIX.g2o (a front-end file: SPEC §1.2 edges and §1.4\n"
       "labels) and PREFIX.gt.txt (SPEC §2). Deterministic for a seed. See docs/SIMULATOR.md.");
+  parser.AddExample("dynslam simulate --seq 0003 --seed 1 --out scene");
+  parser.AddExample("dynslam simulate --seq 0020 --density paper --frames 0:100 --out big");
+  parser.Group("scene");
   parser.AddString("kitti", &kitti_dir,
                    "KITTI tracking folder (oxts/, label_02/, calib/); default: the embedded data "
                    "(the repository's data/kitti_tracking, found from where the command is, or "
@@ -88,6 +91,7 @@ int RunSimulate(int argc, char** argv) {
   parser.AddFlag("synthetic", &o.synthetic, "a tiny hand-made scene, no KITTI data");
   parser.AddInt("synthetic-frames", &o.synthetic_frames, "frames of the synthetic scene", 2,
                 100000);
+  parser.Group("noise");
   parser.AddFlag("no-noise", &no_noise,
                  "exact measurements and initial values (informations unchanged)");
   parser.AddDouble("pixel-sigma", &o.pixel_sigma, "image noise, px", 1e-9, 1e6);
@@ -114,6 +118,7 @@ int RunSimulate(int argc, char** argv) {
                    "fraction of point observations with a gross error", 0, 1);
   parser.AddDouble("outlier-min", &o.outlier_min, "m, smallest gross error", 0, 1e6);
   parser.AddDouble("outlier-max", &o.outlier_max, "m, largest gross error", 0, 1e6);
+  parser.Group("density and visibility");
   parser.AddChoice("density", &density, {"default", "paper"},
                    "paper: as many tracked points as the paper's front end, per sequence, so that "
                    "whole sequences build to its Table I variable counts (docs/SIMULATOR.md); "
@@ -134,6 +139,7 @@ int RunSimulate(int argc, char** argv) {
                    "m/s, ... and reaches this speed over 1 s somewhere", 0, 1e6);
   parser.AddString("object-types", &object_types, "label types simulated as rigid objects",
                    "LIST");
+  parser.Group("output");
   parser.AddString("out", &out_prefix, "writes PREFIX.g2o and PREFIX.gt.txt (required)",
                    "PREFIX");
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;

@@ -83,14 +83,18 @@ int RunSolve(int argc, char** argv) {
                    "them for the last accepted state (termination \"interrupted\", exit 130 or\n"
                    "143); a second signal quits at once. Each file is written whole or not at\n"
                    "all; summary.json, written last, marks a complete set.");
+  parser.AddExample("dynslam solve scene.oc_b.g2o --out result --gt scene.gt.txt");
+  parser.AddExample("dynslam solve graph.g2o --out result --tolerances tight --covariance cameras");
   parser.AddPositional("GRAPH", &graph_path, "graph file (g2o dialect of SPEC §1)");
-  parser.AddString("out", &out_dir, "output directory (required)", "DIR");
+  parser.Group("input");
   parser.AddString("gt", &gt_path, "ground-truth file (SPEC §2) for the metrics of SPEC §5", "GT");
   parser.AddFlag("skip-unknown-tags", &skip_unknown,
                  "skip lines with tags SPEC §1 does not know (counted and reported)");
   parser.AddFlag("repair-information", &repair_information,
                  "replace an information matrix that is not positive definite by the nearest one "
                  "with eigenvalues >= 1e-9 x the largest (each repaired line is reported)");
+  parser.Group("output");
+  parser.AddString("out", &out_dir, "output directory (required)", "DIR");
   parser.AddFlag("ceres-report", &ceres_report,
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
   parser.AddString("covariance", &covariance_kinds,
@@ -101,7 +105,7 @@ int RunSolve(int argc, char** argv) {
   parser.AddFlag("check-options", &check_options,
                  "check the other options and exit (0, or 2 naming the problem) without reading "
                  "GRAPH or writing anything (what a sweep does before it starts)");
-  SolverFlags solver_flags(&parser);
+  SolverFlags solver_flags(&parser, SolverOptionTable());
   CompatFlags compat(&parser);
   ExportFlags export_flags(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;

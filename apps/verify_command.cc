@@ -18,6 +18,8 @@ int RunVerify(int argc, char** argv) {
       "same layout (e.g. reference/<scene>/gtsam/<formulation>/tight_exact): initial and final\n"
       "cost in total and per edge kind, every variable of solution.g2o by role (max and RMS),\n"
       "metrics and iterations. Prints one table and exits 1 when a check is beyond tolerance.");
+  parser.AddExample("dynslam verify result ../shared/reference/synthetic/gtsam/wc/tight");
+  parser.AddExample("dynslam verify result REFERENCE_DIR --final-cost-tolerance 1e-6 --report-variables");
   parser.AddPositional("RESULT_DIR", &result_dir, "our solve's output directory");
   parser.AddPositional("REFERENCE_DIR", &reference_dir, "the reference solve's directory");
   parser.AddDouble("initial-cost-tolerance", &tolerances.initial_cost_relative,

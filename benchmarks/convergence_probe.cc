@@ -4,9 +4,9 @@
 // and, every `--cost-every` steps, the cost per edge kind. Then names the variables that move
 // last: those farthest from the final values once the cost is within 1e-6 of the final cost.
 //
-//   convergence_probe GRAPH [--remaining-chi2 X] [--extrapolation on|off] [--max-iterations N]
-//                           [--initial-lambda X] [--nonmonotonic-steps N] [--minimizer lm|dogleg]
-//                           [--cost-every N] [--top N]
+//   convergence_probe GRAPH [--SOLVER-OPTION VALUE ...] [--cost-every N] [--top N]
+//
+// (solver options as `dynslam solve` spells them, docs/OPTIONS.md; switches take on or off)
 //
 // Prints CSV blocks to stdout: "steps" (one row per linear solve or extrapolation), "gap" (per
 // accepted step and role: RMS rotation [rad] and translation/position [m] distance to the final
@@ -55,33 +55,29 @@ struct Args {
   int top = 15;
 };
 
+// Any solver option of the table as --flag-name VALUE, and the probe's own two.
 bool ParseArgs(int argc, char** argv, Args* args) {
+  std::vector<std::pair<std::string, std::string>> given;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--remaining-chi2" && has_value) {
-      args->options.remaining_chi2 = std::atof(argv[++i]);
-    } else if (a == "--extrapolation" && has_value) {
-      args->options.extrapolate = std::string(argv[++i]) == "on";
-    } else if (a == "--max-iterations" && has_value) {
-      args->options.max_iterations = std::atoi(argv[++i]);
-    } else if (a == "--initial-lambda" && has_value) {
-      args->options.initial_lambda = std::atof(argv[++i]);
-    } else if (a == "--nonmonotonic-steps" && has_value) {
-      args->options.nonmonotonic_steps = std::atoi(argv[++i]);
-    } else if (a == "--minimizer" && has_value) {
-      if (!Parse(argv[++i], &args->options.minimizer)) return false;
-    } else if (a == "--cost-every" && has_value) {
+    if (a == "--cost-every" && has_value) {
       args->cost_every = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--top" && has_value) {
       args->top = std::atoi(argv[++i]);
+    } else if (a.rfind("--", 0) == 0 && has_value) {
+      given.emplace_back(a.substr(2), argv[++i]);
     } else if (args->graph.empty() && a.rfind("--", 0) != 0) {
       args->graph = a;
     } else {
       return false;
     }
   }
-  return !args->graph.empty();
+  const auto problem = ApplyOptions(SolverOptionTable(), given,
+                                    [](const std::string& name) { return "--" + FlagName(name); },
+                                    &args->options);
+  if (problem) std::fprintf(stderr, "%s\n", problem->c_str());
+  return !problem && !args->graph.empty();
 }
 
 void PrintSteps(const std::vector<StepRecord>& rows) {
@@ -254,9 +250,8 @@ int main(int argc, char** argv) {
   dynslam::Args args;
   if (!dynslam::ParseArgs(argc, argv, &args)) {
     std::fprintf(stderr,
-                 "usage: convergence_probe GRAPH [--remaining-chi2 X] [--extrapolation on|off] "
-                 "[--max-iterations N] [--initial-lambda X] [--nonmonotonic-steps N] "
-                 "[--minimizer lm|dogleg] [--cost-every N] [--top N]\n");
+                 "usage: convergence_probe GRAPH [--SOLVER-OPTION VALUE ...] [--cost-every N] "
+                 "[--top N]\n");
     return 2;
   }
   return dynslam::Run(args);

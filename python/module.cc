@@ -370,6 +370,13 @@ void DefineFunctions(py::module_& m) {
   m.def("read_ground_truth", [](const py::object& path) {
     return Unwrap(ReadGroundTruth(ExistingFile(path)));
   }, py::arg("path"), "a ground-truth file (SPEC §2); path: str or path-like");
+  static const std::string build_doc =
+      "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path; start: a "
+      "solved wc Graph of the same front end to take oc_a/oc_b/oc_c's initial values from "
+      "(SPEC §3.5 start wc).\n\nBuild options (keyword arguments):\n" + BuildOptionsDoc();
+  static const std::string solve_doc =
+      "solve a copy of the graph; returns a SolveReport.\n\nSolver options (keyword "
+      "arguments):\n" + SolverOptionsDoc();
   m.def("build", [](const Graph& front_end, const std::string& formulation, const py::object& gt,
                     const py::object& start, const py::kwargs& options) {
     Formulation f;
@@ -393,13 +400,10 @@ void DefineFunctions(py::module_& m) {
     }
     return built;
   }, py::arg("frontend"), py::arg("formulation"), py::arg("gt") = py::none(),
-     py::arg("start") = py::none(),
-     "build one formulation from a front end (SPEC §3); gt: a GroundTruth or a path; start: a "
-     "solved wc Graph of the same front end to take oc_a/oc_b/oc_c's initial values from "
-     "(SPEC §3.5 start wc)");
+     py::arg("start") = py::none(), build_doc.c_str());
   m.def("solve", [](const Graph& graph, const py::kwargs& options) {
     return SolveReleasingTheGil(ToSolverOptions(options), graph);
-  }, py::arg("graph"), "solve a copy of the graph; options are SolverOptions's fields");
+  }, py::arg("graph"), solve_doc.c_str());
   m.def("metrics", [](const Graph& graph, const py::object& gt) {
     return ParseJsonText(MetricsJson(ComputeMetrics(graph, AsGroundTruth(gt))));
   }, py::arg("graph"), py::arg("gt"), "SPEC §5 metrics as a dict shaped like metrics.json");

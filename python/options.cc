@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace py = pybind11;
 
@@ -40,22 +42,6 @@ std::pair<const std::string, std::function<void(Options*, py::handle)>> Plain(
           }};
 }
 
-// An enum field spelled as on the command line.
-template <typename Options, typename E>
-std::pair<const std::string, std::function<void(Options*, py::handle)>> Named(
-    const char* name, E Options::*member, bool (*parse)(const std::string&, E*)) {
-  return {name, [name, member, parse](Options* o, py::handle value) {
-            if (!py::isinstance<py::str>(value)) {
-              throw py::type_error(std::string(name) + ": expected str, got " +
-                                   py::repr(value).cast<std::string>());
-            }
-            const std::string text = value.cast<std::string>();
-            if (!parse(text, &(o->*member))) {
-              throw py::value_error(std::string(name) + ": unknown value '" + text + "'");
-            }
-          }};
-}
-
 template <typename Options>
 Options Apply(const Setters<Options>& setters, const py::kwargs& kwargs) {
   Options options;
@@ -68,94 +54,97 @@ Options Apply(const Setters<Options>& setters, const py::kwargs& kwargs) {
   return options;
 }
 
-bool ParseMotionInit(const std::string& text, MotionInit* init) {
-  if (text != "frontend" && text != "identity") return false;
-  *init = text == "frontend" ? MotionInit::kFrontEnd : MotionInit::kIdentity;
-  return true;
-}
-
-bool ParseHybridSmoothingInfo(const std::string& text, HybridSmoothingInfo* info) {
-  if (text != "frontend" && text != "world" && text != "sigmas") return false;
-  *info = text == "frontend" ? HybridSmoothingInfo::kFrontEnd
-          : text == "world"  ? HybridSmoothingInfo::kWorld
-                             : HybridSmoothingInfo::kSigmas;
-  return true;
-}
-
-// robust_kernels={"point": ("huber", 1.345), ...}: kinds by their SPEC §1.5 names.
-void SetKernels(SolverOptions* options, py::handle value) {
-  for (const auto& [key, spec] : value.cast<py::dict>()) {
-    const std::string kind = key.cast<std::string>();
-    const auto [type, threshold] = spec.cast<std::pair<std::string, double>>();
-    int index = -1;
-    for (const EdgeKind k : kAllEdgeKinds) {
-      if (kind == EdgeKindName(k)) index = static_cast<int>(k);
-    }
-    if (index < 0) throw py::value_error("robust_kernels: unknown edge kind '" + kind + "'");
-    RobustKernel& kernel = options->kernels[index];
-    if (type == "huber") {
-      kernel.type = RobustKernel::Type::kHuber;
-    } else if (type == "cauchy") {
-      kernel.type = RobustKernel::Type::kCauchy;
-    } else {
-      throw py::value_error("robust_kernels: unknown kernel '" + type + "' (huber, cauchy)");
-    }
-    kernel.threshold = threshold;
+// A keyword argument's value as the option's text: TypeError when its Python type does not fit.
+template <typename Options>
+std::string TextOf(const Option<Options>& option, py::handle value) {
+  const bool is_bool = py::isinstance<py::bool_>(value);
+  const bool is_int = py::isinstance<py::int_>(value) && !is_bool;
+  const char* expected = nullptr;
+  switch (option.type) {
+    case OptionType::kSwitch:
+      if (is_bool) return value.cast<bool>() ? "on" : "off";
+      expected = "bool";
+      break;
+    case OptionType::kInteger:
+      if (is_int) return py::str(value).cast<std::string>();
+      expected = "int";
+      break;
+    case OptionType::kReal:
+      if (is_int || py::isinstance<py::float_>(value)) return RealText(value.cast<double>());
+      expected = "float";
+      break;
+    case OptionType::kChoice:
+    case OptionType::kText:
+    case OptionType::kPreset:
+      if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+      expected = "str";
+      break;
   }
+  throw py::type_error(option.name + ": expected " + expected + ", got " +
+                       py::str(py::type::of(value).attr("__name__")).cast<std::string>() + " " +
+                       py::repr(value).cast<std::string>());
+}
+
+template <typename Options>
+Options FromTable(const OptionTable<Options>& table, const py::kwargs& kwargs) {
+  std::vector<std::pair<std::string, std::string>> given;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::cast<std::string>(key);
+    const Option<Options>* option = FindOption(table, name);
+    if (option == nullptr || name.find('-') != std::string::npos) {
+      throw py::type_error("unknown option '" + name + "'");
+    }
+    given.emplace_back(name, TextOf(*option, value));
+  }
+  Options options;
+  if (std::optional<std::string> problem =
+          ApplyOptions(table, given, [](const std::string& name) { return name; }, &options)) {
+    throw py::value_error(*problem);
+  }
+  return options;
+}
+
+const char* PythonType(OptionType type) {
+  switch (type) {
+    case OptionType::kSwitch: return "bool";
+    case OptionType::kInteger: return "int";
+    case OptionType::kReal: return "float";
+    default: return "str";
+  }
+}
+
+template <typename Options>
+std::string TableDoc(const OptionTable<Options>& table) {
+  const Options defaults;
+  std::string doc;
+  for (const Option<Options>& option : table) {
+    std::string value = option.get(defaults);
+    if (option.type == OptionType::kSwitch) value = value == "on" ? "True" : "False";
+    if (option.type == OptionType::kChoice || option.type == OptionType::kText ||
+        option.type == OptionType::kPreset) {
+      value = "'" + value + "'";
+    }
+    doc += "    " + option.name + " (" + PythonType(option.type) + ", default " + value;
+    if (!option.values.empty() && option.type != OptionType::kSwitch) {
+      doc += "; one of " + option.metavar;
+    }
+    doc += "): " + option.help + "\n";
+  }
+  return doc;
 }
 
 }  // namespace
 
 SolverOptions ToSolverOptions(const py::kwargs& kwargs) {
-  using O = SolverOptions;
-  static const Setters<O> setters = {
-      Named<O, MinimizerType>("minimizer", &O::minimizer, Parse),
-      Named<O, LinearSolverType>("linear_solver", &O::linear_solver, Parse),
-      Named<O, SparseBackend>("sparse_backend", &O::sparse_backend, Parse),
-      Plain("threads", &O::threads),
-      Plain("max_iterations", &O::max_iterations),
-      Plain("max_time_s", &O::max_time_s),
-      Plain("function_tolerance", &O::function_tolerance),
-      Plain("gradient_tolerance", &O::gradient_tolerance),
-      Plain("parameter_tolerance", &O::parameter_tolerance),
-      Plain("remaining_chi2", &O::remaining_chi2),
-      Plain("extrapolate", &O::extrapolate),
-      Plain("snap_segment_gauges", &O::snap_segment_gauges),
-      Plain("initial_lambda", &O::initial_lambda),
-      Plain("nonmonotonic_steps", &O::nonmonotonic_steps),
-      Plain("eliminate_object_points", &O::eliminate_object_points),
-      Plain("world_anchored_object_points", &O::world_anchored_object_points),
-      Plain("world_frame_kinematic_residual", &O::world_frame_kinematic_residual),
-      Plain("fix_first", &O::fix_first),
-      Plain("dsc_motion_residual", &O::dsc_motion_residual),
-      Plain("dsc_motion_sigma", &O::dsc_motion_sigma),
-      Plain("dsc_object_motion_residual", &O::dsc_object_motion_residual),
-      {"robust_kernels", SetKernels},
-  };
-  return Apply(setters, kwargs);
+  return FromTable(SolverOptionTable(), kwargs);
 }
 
 BuildOptions ToBuildOptions(const py::kwargs& kwargs) {
-  using O = BuildOptions;
-  static const Setters<O> setters = {
-      Plain("min_object_frames", &O::min_object_frames),
-      Named<O, ObjectInit>("object_init", &O::object_init, ParseObjectInit),
-      Named<O, MotionInit>("motion_init", &O::motion_init, ParseMotionInit),
-      Plain("kinematic_sigma", &O::kinematic_sigma),
-      Plain("object_prior_rotation_variance", &O::object_prior_rotation_variance),
-      Plain("object_prior_translation_variance", &O::object_prior_translation_variance),
-      Plain("dsc_object_centric_noise", &O::dsc_object_centric_noise),
-      Named<O, HybridSmoothingInfo>("hybrid_smoothing_info", &O::hybrid_smoothing_info,
-                                    ParseHybridSmoothingInfo),
-      Plain("hybrid_smoothing_sigma_rotation", &O::hybrid_smoothing_sigma_rotation),
-      Plain("hybrid_smoothing_sigma_translation", &O::hybrid_smoothing_sigma_translation),
-      Plain("hybrid_anchor_sigma", &O::hybrid_anchor_sigma),
-      Plain("dynosam_smoothing", &O::dynosam_smoothing),
-      Plain("dynosam_embedded_frame", &O::dynosam_embedded_frame),
-      Plain("dynosam_points_from_measurements", &O::dynosam_points_from_measurements),
-  };
-  return Apply(setters, kwargs);
+  return FromTable(BuildOptionTable(), kwargs);
 }
+
+std::string SolverOptionsDoc() { return TableDoc(SolverOptionTable()); }
+std::string BuildOptionsDoc() { return TableDoc(BuildOptionTable()); }
 
 SimulateOptions ToSimulateOptions(const py::kwargs& kwargs) {
   using O = SimulateOptions;

@@ -1,8 +1,12 @@
-// Keyword arguments → the library's option structs, one table per struct: every field by its
-// C++ name (SolverOptions::max_iterations is `max_iterations=`), enums by their command-line
-// spelling (`minimizer="lm"`). An unknown name or a bad value raises TypeError or ValueError.
+// Keyword arguments → the library's option structs. Solver and build options come from their
+// option tables (options.h): the keyword is the option's name, its value the Python type of the
+// option (bool for a switch, str for a choice). Simulation options: every field by its C++ name.
+// An unknown name or a value of the wrong type raises TypeError, a bad value ValueError naming
+// the option.
 #ifndef DYNSLAM_PYTHON_OPTIONS_H_
 #define DYNSLAM_PYTHON_OPTIONS_H_
+
+#include <string>
 
 #include <pybind11/pybind11.h>
 
@@ -15,6 +19,10 @@ namespace dynslam::python {
 SolverOptions ToSolverOptions(const pybind11::kwargs& options);
 BuildOptions ToBuildOptions(const pybind11::kwargs& options);
 SimulateOptions ToSimulateOptions(const pybind11::kwargs& options);
+
+// "    name (type, default value): help" per option, for docstrings.
+std::string SolverOptionsDoc();
+std::string BuildOptionsDoc();
 
 }  // namespace dynslam::python
 

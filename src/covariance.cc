@@ -127,8 +127,8 @@ Expected<CovarianceReport> ComputeCovariances(const Graph& solved, const SolveRe
   // object frame — turned into the world by L_curr's rotation its Jacobian gains a term in the
   // residual, so JᵀJ would differ wherever the residual is not zero (solver.h).
   SolverOptions options = report.options_used;
-  options.world_anchored_object_points = false;
-  options.world_frame_kinematic_residual = false;
+  options.object_point_variables = Frame::kObject;
+  options.kinematic_residual_frame = Frame::kObject;
   Expected<SystemJacobian> system = EvaluateJacobian(solved, options);
   if (!system.ok()) return system.error();
 

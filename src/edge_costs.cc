@@ -42,7 +42,7 @@ ceres::CostFunction* MakeCost(const ObjectMotionEdge& e, const SolverOptions& op
 }
 
 ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& options) {
-  return ObjectKinematicError::Create(e.information, options.world_frame_kinematic_residual);
+  return ObjectKinematicError::Create(e.information, (options.kinematic_residual_frame == Frame::kWorld));
 }
 
 ceres::CostFunction* MakeCost(const HybridPointEdge& e, const SolverOptions&) {

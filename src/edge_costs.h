@@ -29,7 +29,7 @@ ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& optio
 ceres::CostFunction* MakeCost(const HybridPointEdge& e, const SolverOptions& options);
 ceres::CostFunction* MakeCost(const HybridSmoothingEdge& e, const SolverOptions& options);
 
-// SolverOptions::world_anchored_object_points: the residual of an object-frame point edge whose
+// SolverOptions::object_point_variables: the residual of an object-frame point edge whose
 // point block holds w = L_a · m_L at the anchor pose `anchor`
 // (cost_functions/world_anchored_object_point.h), and the vertices it is over.
 struct AnchoredCost {

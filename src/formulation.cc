@@ -928,6 +928,42 @@ bool ParseObjectInit(const std::string& text, ObjectInit* rule) {
   return false;
 }
 
+const char* MotionInitName(MotionInit init) {
+  return init == MotionInit::kIdentity ? "identity" : "frontend";
+}
+
+std::string HybridSmoothingInfoText(const BuildOptions& options) {
+  switch (options.hybrid_smoothing_info) {
+    case HybridSmoothingInfo::kFrontEnd: return "frontend";
+    case HybridSmoothingInfo::kWorld: return "world";
+    case HybridSmoothingInfo::kSigmas: break;
+  }
+  return RealText(options.hybrid_smoothing_sigma_rotation) + "," +
+         RealText(options.hybrid_smoothing_sigma_translation);
+}
+
+std::optional<std::string> ParseHybridSmoothingInfo(const std::string& text,
+                                                    BuildOptions* options) {
+  if (text == "frontend" || text == "world") {
+    options->hybrid_smoothing_info =
+        text == "world" ? HybridSmoothingInfo::kWorld : HybridSmoothingInfo::kFrontEnd;
+    return std::nullopt;
+  }
+  const size_t comma = text.find(',');
+  double sigmas[2];
+  const std::string parts[2] = {text.substr(0, comma),
+                                comma == std::string::npos ? "" : text.substr(comma + 1)};
+  for (int i = 0; i < 2; ++i) {
+    if (ParseReal(parts[i], 0, 1e300, &sigmas[i]) || !(sigmas[i] > 0)) {
+      return "'" + text + "' is not frontend, world or two positive sigmas SIGMA_R,SIGMA_T";
+    }
+  }
+  options->hybrid_smoothing_info = HybridSmoothingInfo::kSigmas;
+  options->hybrid_smoothing_sigma_rotation = sigmas[0];
+  options->hybrid_smoothing_sigma_translation = sigmas[1];
+  return std::nullopt;
+}
+
 std::string BuildReport::ToText() const {
   std::string text;
   for (const std::string& line : lines) text += line + "\n";

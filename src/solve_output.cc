@@ -1,6 +1,7 @@
 #include "dynslam/solve_output.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "dynslam/file_io.h"
@@ -110,46 +111,27 @@ JsonValue CostJson(const CostByKind& cost) {
   return json;
 }
 
-const char* KernelName(RobustKernel::Type type) {
-  switch (type) {
-    case RobustKernel::Type::kNone: return "none";
-    case RobustKernel::Type::kHuber: return "huber";
-    case RobustKernel::Type::kCauchy: return "cauchy";
-  }
-  return "?";
-}
-
-// `options` as the solve used them (SolveReport::options_used: no auto left).
+// `options` as the solve used them (SolveReport::options_used: no auto left), every option of
+// SolverOptionTable under its name.
 JsonValue SolverJson(const SolverOptions& options) {
-  JsonValue kernels = JsonValue::object();
-  for (const EdgeKind kind : kAllEdgeKinds) {
-    const RobustKernel& kernel = options.kernels[static_cast<int>(kind)];
-    if (kernel.type == RobustKernel::Type::kNone) continue;
-    kernels[EdgeKindName(kind)] = {{"type", KernelName(kernel.type)},
-                                   {"threshold", kernel.threshold}};
+  JsonValue json = {{"library", "Ceres Solver 2.1 (dynslam)"}};
+  for (const Option<SolverOptions>& option : SolverOptionTable()) {
+    const std::string text = option.get(options);
+    switch (option.type) {
+      case OptionType::kPreset: continue;  // its effect is in the options it sets
+      case OptionType::kSwitch: json[option.name] = text == "on"; break;
+      case OptionType::kInteger: json[option.name] = std::stoll(text); break;
+      case OptionType::kReal: {
+        double value = 0;
+        ParseReal(text, -HUGE_VAL, HUGE_VAL, &value);  // exact: the text is the shortest form
+        json[option.name] = value;
+        break;
+      }
+      case OptionType::kChoice:
+      case OptionType::kText: json[option.name] = text; break;
+    }
   }
-  return JsonValue{
-      {"library", "Ceres Solver 2.1 (dynslam)"},
-      {"minimizer", Name(options.minimizer)},
-      {"linear_solver", Name(options.linear_solver)},
-      {"sparse_backend", Name(options.sparse_backend)},
-      {"threads", options.threads},
-      {"max_iterations", options.max_iterations},
-      {"max_time_s", options.max_time_s},
-      {"function_tolerance", options.function_tolerance},
-      {"gradient_tolerance", options.gradient_tolerance},
-      {"parameter_tolerance", options.parameter_tolerance},
-      {"remaining_chi2", options.remaining_chi2},
-      {"extrapolate", options.extrapolate},
-      {"snap_segment_gauges", options.snap_segment_gauges},
-      {"initial_lambda", options.initial_lambda},
-      {"nonmonotonic_steps", options.nonmonotonic_steps},
-      {"fix_first", options.fix_first},
-      {"eliminate_object_points", options.eliminate_object_points},
-      {"released_lm", options.dsc_released_lm},
-      {"object_point_variables", options.world_anchored_object_points ? "world" : "object"},
-      {"kinematic_residual_frame", options.world_frame_kinematic_residual ? "world" : "object"},
-      {"robust_kernels", std::move(kernels)}};
+  return json;
 }
 
 }  // namespace

@@ -29,54 +29,15 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // tolerances, and the λ at which it gives up.
 constexpr double kReleasedTolerance = 1e-5;
 constexpr double kReleasedMaxLambda = 1e5;
-// SolverOptions::extrapolate: the step quality ρ (actual / predicted decrease) of two accepted
+// SolverOptions::extrapolation: the step quality ρ (actual / predicted decrease) of two accepted
 // steps in a row that starts an extrapolation, and the largest factor it moves by.
 constexpr double kExtrapolationRho = 1.5;
 constexpr double kMaxExtrapolation = 64;
-// SolverOptions::snap_segment_gauges: the step quality ρ an accepted step needs before a gauge
+// SolverOptions::gauge_moves: the step quality ρ an accepted step needs before a gauge
 // move (Ceres's "very successful" step). Moves made earlier, while the steps are still large and
 // the model poor, sent whole KITTI 0018 oc_a on a longer path to a higher stop
 // (docs/CONVERGENCE.md §7).
 constexpr double kGaugeMoveRho = 0.75;
-
-struct NamedEnum {
-  const char* name;
-  int value;
-};
-
-template <typename E, size_t N>
-const char* NameOf(const NamedEnum (&table)[N], E value) {
-  for (const NamedEnum& entry : table) {
-    if (entry.value == static_cast<int>(value)) return entry.name;
-  }
-  return "?";
-}
-
-template <typename E, size_t N>
-bool ParseName(const NamedEnum (&table)[N], const std::string& text, E* value) {
-  for (const NamedEnum& entry : table) {
-    if (text == entry.name) {
-      *value = static_cast<E>(entry.value);
-      return true;
-    }
-  }
-  return false;
-}
-
-constexpr NamedEnum kMinimizerNames[] = {
-    {"lm", static_cast<int>(MinimizerType::kLevenbergMarquardt)},
-    {"dogleg", static_cast<int>(MinimizerType::kDogleg)},
-    {"auto", static_cast<int>(MinimizerType::kAuto)}};
-constexpr NamedEnum kLinearSolverNames[] = {
-    {"sparse_schur", static_cast<int>(LinearSolverType::kSparseSchur)},
-    {"sparse_normal_cholesky", static_cast<int>(LinearSolverType::kSparseNormalCholesky)},
-    {"iterative_schur", static_cast<int>(LinearSolverType::kIterativeSchur)},
-    {"dense_schur", static_cast<int>(LinearSolverType::kDenseSchur)},
-    {"auto", static_cast<int>(LinearSolverType::kAuto)}};
-constexpr NamedEnum kBackendNames[] = {
-    {"suitesparse", static_cast<int>(SparseBackend::kSuiteSparse)},
-    {"eigen", static_cast<int>(SparseBackend::kEigen)},
-    {"auto", static_cast<int>(SparseBackend::kAuto)}};
 
 std::unique_ptr<ceres::LossFunction> MakeLoss(const RobustKernel& kernel) {
   switch (kernel.type) {
@@ -104,7 +65,7 @@ class Assembly {
   using Values = SegmentGauges::Values;
   const Values& values() const { return values_; }
   void Restore(const Values& values) { std::copy(values.begin(), values.end(), values_.begin()); }
-  // The object segments whose gauge SolverOptions::snap_segment_gauges moves, and the move.
+  // The object segments whose gauge SolverOptions::gauge_moves moves, and the move.
   SegmentGauges FindSegmentGauges(const Graph& graph);
   void SnapGauges(const SegmentGauges& gauges) { gauges.Snap(&values_); }
   // Sets every block to from ⊞ alpha·(to ⊟ from): along the manifold's tangent for poses, along
@@ -146,7 +107,7 @@ class Assembly {
   Status AddEdge(const Graph& graph, const ObjectPointEdge& e, const SolverOptions& options);
   Status AddEdge(const Graph& graph, const ObjectMotionEdge& e, const SolverOptions& options);
 
-  // SolverOptions::world_anchored_object_points: each object-frame point's anchor pose, chosen
+  // SolverOptions::object_point_variables: each object-frame point's anchor pose, chosen
   // before any residual is added; its block then holds w = L_a · m_L (WriteBack undoes it).
   void AnchorObjectPoints(const Graph& graph);
   // Records the points of a residual that joins two or more (for the Schur ordering).
@@ -199,7 +160,7 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
     a->roles_.push_back(vertex.label.role);
     a->values_.push_back(vertex.value);
   }
-  for (int k = 0; k < kNumEdgeKinds; ++k) a->losses_[k] = MakeLoss(options.kernels[k]);
+  for (int k = 0; k < kNumEdgeKinds; ++k) a->losses_[k] = MakeLoss(options.robust[k]);
 
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
@@ -207,7 +168,7 @@ Expected<std::unique_ptr<Assembly>> Assembly::Build(const Graph& graph,
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   a->problem_ = std::make_unique<ceres::Problem>(problem_options);
 
-  if (options.world_anchored_object_points) a->AnchorObjectPoints(graph);
+  if ((options.object_point_variables == Frame::kWorld)) a->AnchorObjectPoints(graph);
   Status status;
   graph.ForEachEdgeVector([&](const auto& edges) {
     for (const auto& e : edges) {
@@ -458,12 +419,12 @@ class ConvergenceRecorder : public ceres::IterationCallback {
  public:
   using Clock = std::chrono::steady_clock;
   // `scratch` is used only when options.on_accepted_state is set; `gauges` are the segments
-  // SolverOptions::snap_segment_gauges moves; `start` is where options.max_time_s counts from.
+  // SolverOptions::gauge_moves moves; `start` is where options.max_time counts from.
   ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch,
                       const SegmentGauges* gauges, Clock::time_point start)
       : options_(options), assembly_(assembly), scratch_(scratch), gauges_(gauges), start_(start),
-        extrapolating_(options.extrapolate),
-        moving_gauges_(options.snap_segment_gauges && !gauges->empty()) {}
+        extrapolating_(options.extrapolation),
+        moving_gauges_(options.gauge_moves && !gauges->empty()) {}
 
   // Ceres restarts after an extrapolation (Solve); each run is a segment whose clock starts at
   // `offset_s` seconds after the first run started.
@@ -568,8 +529,8 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     const int steps = static_cast<int>(rows_.size());
     if (options_.should_stop && options_.should_stop()) {
       Stop("interrupted", "stopped on request after " + std::to_string(steps) + " steps");
-    } else if (options_.max_time_s > 0 &&
-               std::chrono::duration<double>(Clock::now() - start_).count() >= options_.max_time_s) {
+    } else if (options_.max_time > 0 &&
+               std::chrono::duration<double>(Clock::now() - start_).count() >= options_.max_time) {
       Stop("time_limit", "time limit reached after " + std::to_string(steps) + " steps");
     } else if (options_.dsc_released_lm && !rows_.empty() && rows_.back().accepted) {
       if (rows_.back().cost - rows_.back().trial_cost <= kReleasedTolerance) {
@@ -595,7 +556,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     return !stop_reason_.empty();
   }
   static bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
-  // SolverOptions::snap_segment_gauges: the last row is an accepted linear solve of quality
+  // SolverOptions::gauge_moves: the last row is an accepted linear solve of quality
   // ρ ≥ kGaugeMoveRho that lowered the cost by less than the segments' priors still hold (all
   // of which a gauge move removes in oc_a).
   bool GaugeMoveWanted() const {
@@ -605,7 +566,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     if (row.relative_decrease < kGaugeMoveRho) return false;
     return gauges_->PriorCost(assembly_->values()) > row.cost - row.trial_cost;
   }
-  // SolverOptions::extrapolate: the last two rows are accepted linear solves whose decrease the
+  // SolverOptions::extrapolation: the last two rows are accepted linear solves whose decrease the
   // model underestimated by ρ ≥ kExtrapolationRho.
   bool ExtrapolationWanted() const {
     if (!extrapolating_ || rows_.size() < 2) return false;
@@ -661,15 +622,15 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   int extrapolations_ = 0;
   int gauge_moves_ = 0;
   double offset_s_ = 0;
-  bool extrapolating_;  // SolverOptions::extrapolate, until an extrapolation finds nothing
-  bool moving_gauges_;  // SolverOptions::snap_segment_gauges, until a move finds nothing
+  bool extrapolating_;  // SolverOptions::extrapolation, until an extrapolation finds nothing
+  bool moving_gauges_;  // SolverOptions::gauge_moves, until a move finds nothing
   bool gauge_move_requested_ = false;  // set when the segment ended to move the gauges
   Assembly::Values two_before_, before_;  // the states two accepted steps back and one back
   Assembly::Values extrapolation_from_;  // set when the segment ended to extrapolate
   std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
 };
 
-// SolverOptions::extrapolate: from the state `from` two accepted steps back to the assembly's
+// SolverOptions::extrapolation: from the state `from` two accepted steps back to the assembly's
 // current state (whose cost is `cost`), tries α = 2, 4, 8, … ≤ kMaxExtrapolation along the two
 // steps while the cost keeps falling, and leaves the assembly at the lowest cost found.
 // Returns its row (extrapolation, lambda 0), or nothing — the assembly back where it was — when
@@ -696,7 +657,7 @@ std::optional<StepRecord> Extrapolate(const Assembly::Values& from, double cost,
   return row;
 }
 
-// SolverOptions::snap_segment_gauges: moves every segment's gauge so that its prior residual is
+// SolverOptions::gauge_moves: moves every segment's gauge so that its prior residual is
 // zero and returns the move's row, or nothing — the assembly back where it was — when the total
 // cost (`cost` before) did not fall.
 std::optional<StepRecord> MoveGauges(const SegmentGauges& gauges, double cost, int threads,
@@ -719,8 +680,8 @@ std::optional<StepRecord> MoveGauges(const SegmentGauges& gauges, double cost, i
 Status CheckOptions(const SolverOptions& options) {
   if (options.threads < 1) return Error{"", 0, "threads must be at least 1"};
   if (options.max_iterations < 0) return Error{"", 0, "max_iterations must not be negative"};
-  if (!(options.max_time_s >= 0) || !std::isfinite(options.max_time_s)) {
-    return Error{"", 0, "max_time_s must be 0 (no limit) or a positive number of seconds"};
+  if (!(options.max_time >= 0) || !std::isfinite(options.max_time)) {
+    return Error{"", 0, "max_time must be 0 (no limit) or a positive number of seconds"};
   }
   if (!(options.remaining_chi2 >= 0) || !std::isfinite(options.remaining_chi2)) {
     return Error{"", 0, "remaining_chi2 must be 0 (off) or a positive number"};
@@ -742,19 +703,6 @@ Status CheckOptions(const SolverOptions& options) {
 }
 
 }  // namespace
-
-const char* Name(MinimizerType type) { return NameOf(kMinimizerNames, type); }
-const char* Name(LinearSolverType type) { return NameOf(kLinearSolverNames, type); }
-const char* Name(SparseBackend backend) { return NameOf(kBackendNames, backend); }
-bool Parse(const std::string& text, MinimizerType* type) {
-  return ParseName(kMinimizerNames, text, type);
-}
-bool Parse(const std::string& text, LinearSolverType* type) {
-  return ParseName(kLinearSolverNames, text, type);
-}
-bool Parse(const std::string& text, SparseBackend* backend) {
-  return ParseName(kBackendNames, text, backend);
-}
 
 SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
   SolverOptions resolved = options;
@@ -787,14 +735,14 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
     resolved.max_iterations = 100;
     resolved.nonmonotonic_steps = 0;
     resolved.remaining_chi2 = 0;  // its own rule
-    resolved.extrapolate = false;
-    resolved.snap_segment_gauges = false;
+    resolved.extrapolation = false;
+    resolved.gauge_moves = false;
   }
   // Non-monotonic steps helped only the object-frame kinematic residual, whose gauge creep they
   // cut 3–5×; with the world-frame residual they lengthen the tail 2–3× (docs/CONVERGENCE.md).
   if (resolved.nonmonotonic_steps == -1) {
     resolved.nonmonotonic_steps =
-        graph.Edges<KinematicEdge>().empty() || resolved.world_frame_kinematic_residual ? 0 : 5;
+        graph.Edges<KinematicEdge>().empty() || (resolved.kinematic_residual_frame == Frame::kWorld) ? 0 : 5;
   }
   return resolved;
 }
@@ -973,9 +921,9 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   Graph scratch;
   if (options.on_accepted_state) scratch = *graph;
   const SegmentGauges gauges =
-      options.snap_segment_gauges ? assembly.FindSegmentGauges(*graph) : SegmentGauges();
+      options.gauge_moves ? assembly.FindSegmentGauges(*graph) : SegmentGauges();
   ceres_options.update_state_every_iteration =
-      options.on_accepted_state || options.extrapolate || !gauges.empty();
+      options.on_accepted_state || options.extrapolation || !gauges.empty();
   ConvergenceRecorder recorder(options, &assembly, &scratch, &gauges, start);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;

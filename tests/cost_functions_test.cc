@@ -318,7 +318,7 @@ TEST(HybridSmoothingErrorTest, EquivalentFormZeroAndJacobian) {
   }
 }
 
-// The world-frame kinematic residual (SolverOptions::world_frame_kinematic_residual): the object
+// The world-frame kinematic residual (SolverOptions::kinematic_residual_frame): the object
 // frame's residual turned by L_curr's rotation, so the same norm (the same cost) for any
 // information; with the SPEC's isotropic information, unchanged when a rotation G turns every
 // object pose (L → L·G: the segment's gauge), where the object-frame residual turns with G.

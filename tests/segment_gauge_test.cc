@@ -150,7 +150,7 @@ TEST(SegmentGaugeTest, GaugeMovesCutTheCreepAlongTheGauge) {
   MoveAllObjects(Exp(xi), &start);
   auto solve = [&](bool moves) {
     SolverOptions options;
-    options.snap_segment_gauges = moves;
+    options.gauge_moves = moves;
     options.initial_lambda = 1e-2;
     Graph graph = start;
     Expected<SolveReport> report = Solve(options, &graph);

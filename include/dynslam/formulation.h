@@ -14,6 +14,7 @@
 
 #include "dynslam/graph.h"
 #include "dynslam/ground_truth.h"
+#include "dynslam/options.h"
 #include "dynslam/status.h"
 
 namespace dynslam {
@@ -72,6 +73,7 @@ const char* ObjectInitName(ObjectInit rule);  // "motion", "align", "truth", "ce
 bool ParseObjectInit(const std::string& text, ObjectInit* rule);
 
 enum class MotionInit { kFrontEnd, kIdentity };
+const char* MotionInitName(MotionInit init);  // "frontend", "identity"
 
 // SPEC §3.6 `hybrid_smoothing_info`: the information of EDGE_SE3_HY_SMOOTHING.
 // kFrontEnd  the front-end smoothing edge's information as written;
@@ -81,33 +83,84 @@ enum class MotionInit { kFrontEnd, kIdentity };
 enum class HybridSmoothingInfo { kFrontEnd, kWorld, kSigmas };
 
 // SPEC §3.5.
+// Every field is an option of BuildOptionTable() below, which says what it does.
 struct BuildOptions {
   int min_object_frames = 5;
   ObjectInit object_init = ObjectInit::kMotion;
   MotionInit motion_init = MotionInit::kFrontEnd;
-  double kinematic_sigma = 0.01;  // information 1/σ² on all six components
-  // Prior on the first pose of each segment, as variances (information = 1 / variance).
+  double kinematic_sigma = 0.01;
   double object_prior_rotation_variance = 0.2;     // rad²
   double object_prior_translation_variance = 0.4;  // m²
-  // SPEC §7 item 5 (the released code's object-centric noise, never a default): point edges
-  // take the information of the first point edge of their kind, object motion edges isotropic
-  // σ = 0.2, and a segment's first pose the ground-truth translation with identity rotation.
-  // (Item 4, identity motions, is motion_init = kIdentity.)
-  bool dsc_object_centric_noise = false;
-  // SPEC §3.6.
   HybridSmoothingInfo hybrid_smoothing_info = HybridSmoothingInfo::kFrontEnd;
   double hybrid_smoothing_sigma_rotation = 0.01;    // rad, with kSigmas
   double hybrid_smoothing_sigma_translation = 0.1;  // m, with kSigmas
-  double hybrid_anchor_sigma = 1e-6;  // prior on each segment's first hybrid motion at I
-  // SPEC §3.6 `--compat dynosam` (DynoSAM's own choices; never a default). Item 1: smoothing
-  // information from σ = 0.01 rad, 0.1 m on an edge for every k0+2 ≤ k ≤ k1, whether or not the
-  // front end has one; item 3: L_e at X_k0 · (mean of z over all of the object's dynamic
-  // measurements at k0, dropped tracklets included), identity rotation; item 4: object points
-  // from X_kf · z_kf. (Item 2, Huber 1e-4 on hybrid_point, is a solver kernel.)
+  double hybrid_anchor_sigma = 1e-6;
+  // SPEC §7 item 5 and SPEC §3.6's DynoSAM items (never defaults; --compat sets them).
+  bool dsc_object_centric_noise = false;
   bool dynosam_smoothing = false;
   bool dynosam_embedded_frame = false;
   bool dynosam_points_from_measurements = false;
 };
+
+// hybrid_smoothing_info as text: "frontend", "world" or "SIGMA_R,SIGMA_T" (kSigmas).
+std::string HybridSmoothingInfoText(const BuildOptions& options);
+std::optional<std::string> ParseHybridSmoothingInfo(const std::string& text, BuildOptions* options);
+
+// The option table of BuildOptions (options.h). Groups: "build", "compatibility" (SPEC §7, §3.6).
+inline const OptionTable<BuildOptions>& BuildOptionTable() {
+  using O = BuildOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> t = {
+        Integer("min_object_frames", "build", &O::min_object_frames,
+                "shortest object segment kept, in frames (SPEC §3.1)", 2, 1000000),
+        Choice("object_init", "build", &O::object_init,
+               {ObjectInit::kMotion, ObjectInit::kAlign, ObjectInit::kTruth, ObjectInit::kCentroid},
+               ObjectInitName,
+               "initial object poses after a segment's first (SPEC §3.3): chained from the "
+               "initial motions, rigid alignment of the points (the reference graphs' rule), the "
+               "ground truth at every frame, or every pose at its points' centroid with identity "
+               "rotation"),
+        Choice("motion_init", "build", &O::motion_init,
+               {MotionInit::kFrontEnd, MotionInit::kIdentity}, MotionInitName,
+               "initial motions: the front end's values, or identity"),
+        Real("kinematic_sigma", "build", &O::kinematic_sigma,
+             "sigma of the object kinematic edge, all six components (oc_b, oc_c)", 1e-9, 1e9),
+        Real("object_prior_rotation_variance", "build", &O::object_prior_rotation_variance,
+             "variance (rad²) of the prior on each object segment's first pose, rotation",
+             1e-18, 1e18),
+        Real("object_prior_translation_variance", "build", &O::object_prior_translation_variance,
+             "variance (m²) of the prior on each object segment's first pose, translation",
+             1e-18, 1e18),
+        Real("hybrid_anchor_sigma", "build", &O::hybrid_anchor_sigma,
+             "sigma of hy's prior holding each segment's first hybrid motion at identity (SPEC "
+             "§3.6)",
+             1e-12, 1e12),
+        Switch("dsc_object_centric_noise", "compatibility", &O::dsc_object_centric_noise,
+               "SPEC §7 item 5: point edges with the first point edge's information, object "
+               "motion edges sigma 0.2, a segment's first pose at the true translation with "
+               "identity rotation"),
+        Switch("dynosam_smoothing", "compatibility", &O::dynosam_smoothing,
+               "SPEC §3.6 DynoSAM item 1: hy smoothing sigma 0.01 rad, 0.1 m at every frame"),
+        Switch("dynosam_embedded_frame", "compatibility", &O::dynosam_embedded_frame,
+               "SPEC §3.6 DynoSAM item 3: the embedded frame at the camera-frame mean of the "
+               "measurements, identity rotation"),
+        Switch("dynosam_points_from_measurements", "compatibility",
+               &O::dynosam_points_from_measurements,
+               "SPEC §3.6 DynoSAM item 4: object points from their first measurement"),
+    };
+    Option<O> smoothing = Declare<O>(
+        "hybrid_smoothing_info", "build", OptionType::kText,
+        "information of hy's smoothing edges (SPEC §3.6): frontend (the front-end edge's, as "
+        "written), world (mapped into the body frame by the embedded frame's adjoint: as strong "
+        "as wc's), or SIGMA_R,SIGMA_T in rad and m (DynoSAM: 0.01,0.1)",
+        "frontend|world|SR,ST");
+    smoothing.get = HybridSmoothingInfoText;
+    smoothing.set = ParseHybridSmoothingInfo;
+    t.insert(t.begin() + 7, smoothing);
+    return t;
+  }();
+  return table;
+}
 
 struct BuildReport {
   std::vector<std::string> lines;  // "front-end …", "dropped: …", "kept: …", counts

@@ -94,9 +94,12 @@ def test_tight_rule_is_remaining_chi2_zero_without_extrapolation(tmp_path):
                     "tight", "--out", str(out)], check=True, capture_output=True)
     with open(out / "summary.json") as f:
         cli = json.load(f)
-    assert cli["solver"]["remaining_chi2"] == 0 and cli["solver"]["extrapolate"] is False
-    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), remaining_chi2=0,
-                           extrapolate=False)
+    assert cli["solver"]["remaining_chi2"] == 0 and cli["solver"]["extrapolation"] is False
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), tolerances="tight")
+    spelled_out = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), remaining_chi2=0,
+                                extrapolation=False)
+    assert spelled_out.summary()["solver"] == report.summary()["solver"] == cli["solver"]
+    assert spelled_out.steps == report.steps
     assert report.steps == cli["steps"] > dynslam.solve(
         dynslam.read_graph(graph_path("oc_b"))).steps
     assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
@@ -177,10 +180,10 @@ def test_gauge_moves_option_matches_the_cli(tmp_path):
                     "--out", str(out)], check=True, capture_output=True)
     with open(out / "summary.json") as f:
         cli = json.load(f)
-    assert cli["solver"]["snap_segment_gauges"] is True
-    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), snap_segment_gauges=True)
+    assert cli["solver"]["gauge_moves"] is True
+    report = dynslam.solve(dynslam.read_graph(graph_path("oc_b")), gauge_moves=True)
     # This graph makes no move, so the counts alone would not show the option reached the solver.
-    assert report.summary()["solver"]["snap_segment_gauges"] is True
+    assert report.summary()["solver"]["gauge_moves"] is True
     assert report.gauge_moves == cli["gauge_moves"]
     assert report.steps == cli["steps"]
     assert report.final_cost == pytest.approx(cli["final_cost"], rel=1e-12)
@@ -299,9 +302,15 @@ def test_version_paths_pickling_and_reprs(tmp_path):
 
 @pytest.mark.parametrize("options, error, words", [
     ({"max_iterations": "5"}, TypeError, "max_iterations: expected int, got str"),
-    ({"extrapolate": 1}, TypeError, "extrapolate: expected bool"),
+    ({"extrapolation": 1}, TypeError, "extrapolation: expected bool, got int 1"),
+    ({"extrapolate": 1}, TypeError, "extrapolation: expected bool"),  # the earlier spelling
     ({"minimizer": 3}, TypeError, "minimizer: expected str"),
-    ({"minimizer": "newton"}, ValueError, "minimizer: unknown value 'newton'"),
+    ({"minimizer": "newton"}, ValueError, "minimizer: 'newton' is not one of auto|lm|dogleg"),
+    ({"remaining_chi2": -1.0}, ValueError, "remaining_chi2: '-1' is not a number from 0"),
+    ({"robust": "point=tukey:1"}, ValueError, "robust: unknown kernel 'tukey'"),
+    ({"tolerances": "tight", "extrapolation": True}, ValueError,
+     "tolerances tight sets extrapolation off; give one of them"),
+    ({"max-iterations": 5}, TypeError, "unknown option 'max-iterations'"),
     ({"no_such_option": 1}, TypeError, "unknown option 'no_such_option'"),
 ])
 def test_bad_options_name_themselves(options, error, words):
@@ -331,3 +340,27 @@ def test_uncertainty_plot_of_a_solve_with_covariances(tmp_path):
     missing = subprocess.run(["/usr/bin/python3", script, str(tmp_path), "--gt", GT],
                              capture_output=True, text=True)
     assert missing.returncode != 0 and "no solution.g2o" in missing.stderr
+
+
+def test_docstrings_list_every_option():
+    """help(dynslam.solve) and help(dynslam.build) name every option with its default; the
+    names are the option tables' (the command line's flags with '_' for '-')."""
+    solve_help = subprocess.run([os.environ["DYNSLAM_CLI"], "solve", "--help"], check=True,
+                                capture_output=True, text=True).stdout
+    flags = {line.split()[0][2:].replace("-", "_") for line in solve_help.splitlines()
+             if line.startswith("  --")}
+    documented = {line.split()[0] for line in dynslam.solve.__doc__.splitlines()
+                  if line.startswith("    ") and "(" in line}
+    assert {"remaining_chi2", "tolerances", "robust", "max_time", "dsc_released_lm"} <= documented
+    assert documented <= flags  # every solver option is a flag of `dynslam solve` too
+    assert "    remaining_chi2 (float, default 0.01" in dynslam.solve.__doc__
+    assert "    extrapolation (bool, default True" in dynslam.solve.__doc__
+    build_documented = {line.split()[0] for line in dynslam.build.__doc__.splitlines()
+                        if line.startswith("    ") and "(" in line}
+    assert {"object_init", "hybrid_smoothing_info", "kinematic_sigma"} <= build_documented
+
+
+def test_robust_kernels_as_text_reach_the_solver():
+    report = dynslam.solve(dynslam.read_graph(graph_path("wc")), robust="point=huber:1.345",
+                           max_iterations=3)
+    assert report.summary()["solver"]["robust"] == "point=huber:1.345"
