@@ -31,21 +31,6 @@ bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<Cova
   return true;
 }
 
-Status AttachCovariances(const Graph& solved, const SolveReport& report,
-                         const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
-                         CovarianceReport* covariance, SolveOutputs* outputs) {
-  Expected<CovarianceReport> computed =
-      ComputeCovariances(solved, report, VerticesOfKinds(solved, kinds));
-  if (!computed.ok()) return computed.error();
-  *covariance = std::move(computed).value();
-  outputs->covariance = covariance;
-  outputs->covariance_kinds = kinds_text;
-  if (outputs->ground_truth != nullptr && covariance->weak_directions.empty()) {
-    outputs->consistency = ComputeConsistency(solved, *covariance, *outputs->ground_truth);
-  }
-  return Status::Ok();
-}
-
 std::string EmbeddedKittiDir() {
   namespace fs = std::filesystem;
   auto has_data = [](const fs::path& dir) {

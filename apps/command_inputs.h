@@ -21,13 +21,6 @@ bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>*
 // false after printing the problem to stderr; the caller then exits with kExitBadInput.
 bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<CovarianceKind>* kinds);
 
-// The covariances of `kinds` of `solved` (as `report` solved it) into *covariance, attached to
-// *outputs with `kinds_text`, and their NEES when outputs has ground truth and no direction is
-// weak. The library's error, when there is one (then nothing is attached).
-Status AttachCovariances(const Graph& solved, const SolveReport& report,
-                         const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
-                         CovarianceReport* covariance, SolveOutputs* outputs);
-
 // The embedded KITTI Tracking data (oxts/, label_02/, calib/), wherever the command is run from:
 // $DYNSLAM_KITTI, else beside the command — the repository's data/kitti_tracking for a command in
 // build/<type>/apps/, <prefix>/share/dynslam/kitti_tracking for an installed one — else

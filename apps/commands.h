@@ -7,6 +7,7 @@ namespace dynslam::cli {
 int RunBuild(int argc, char** argv);
 int RunCompare(int argc, char** argv);
 int RunMetrics(int argc, char** argv);
+int RunOptions(int argc, char** argv);
 int RunSimulate(int argc, char** argv);
 int RunSolve(int argc, char** argv);
 int RunVerify(int argc, char** argv);

@@ -24,6 +24,8 @@ constexpr Command kCommands[] = {
      dynslam::cli::RunCompare},
     {"metrics", "score a solved graph file against ground truth (SPEC §5)",
      dynslam::cli::RunMetrics},
+    {"options", "print every solver and build option (docs/OPTIONS.md)",
+     dynslam::cli::RunOptions},
     {"simulate", "simulate a front end on KITTI Tracking ground truth (or a synthetic scene)",
      dynslam::cli::RunSimulate},
     {"solve", "solve a graph file and write the outputs of SPEC §4", dynslam::cli::RunSolve},

@@ -6,7 +6,6 @@
 
 #include <ceres/autodiff_cost_function.h>
 
-#include "dynslam/graph.h"
 #include "dynslam/pose.h"
 #include "dynslam/se3.h"
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "dynslam/compare.h"
 #include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
@@ -256,6 +257,57 @@ PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph) {
   return out;
 }
 
+GroundTruth AsGroundTruth(const py::object& gt);
+
+// dynslam.compare: the library's CompareFormulations with the solutions kept. Ctrl-C stops the
+// running solve after its step and raises KeyboardInterrupt once the run has ended.
+py::dict Compare(const Graph& front_end, const py::object& gt,
+                 const std::vector<std::string>& formulations, const py::object& build_options,
+                 const std::string& start, const py::kwargs& solver_options) {
+  CompareOptions options;
+  options.formulations.clear();
+  for (const std::string& name : formulations) {
+    Formulation f;
+    if (!ParseFormulation(name, &f)) {
+      throw py::value_error("unknown formulation '" + name + "' (" + FormulationNames() + ")");
+    }
+    options.formulations.push_back(f);
+  }
+  if (start != "frontend" && start != "wc") {
+    throw py::value_error("start must be 'frontend' or 'wc', not '" + start + "'");
+  }
+  options.start_from_world_centric = start == "wc";
+  if (options.start_from_world_centric &&
+      (options.formulations.empty() || options.formulations[0] != Formulation::kWorldCentric)) {
+    throw py::value_error("start='wc': wc must come first in formulations");
+  }
+  options.build = ToBuildOptions(build_options.is_none() ? py::kwargs() : py::kwargs(build_options));
+  options.solver = ToSolverOptions(solver_options);
+  options.keep_solutions = true;
+  std::optional<py::error_already_set> raised;
+  options.solver.should_stop = [&raised] {
+    py::gil_scoped_acquire gil;
+    if (!raised && PyErr_CheckSignals() != 0) raised.emplace();
+    return raised.has_value();
+  };
+  const std::optional<GroundTruth> truth =
+      gt.is_none() ? std::nullopt : std::optional<GroundTruth>(AsGroundTruth(gt));
+  Expected<CompareRun> run = [&] {
+    py::gil_scoped_release release;
+    return CompareFormulations(front_end, truth ? &*truth : nullptr, options);
+  }();
+  if (raised) throw std::move(*raised);
+  if (!run.ok()) throw ErrorException{run.error()};
+  py::dict results;
+  for (CompareRow& row : run->rows) {
+    py::dict entry;
+    entry["metrics"] = row.metrics ? ParseJsonText(MetricsJson(*row.metrics)) : py::none();
+    entry["report"] = py::cast(PySolveReport{std::move(row.report), std::move(*row.solution)});
+    results[FormulationName(row.formulation)] = entry;
+  }
+  return results;
+}
+
 GroundTruth AsGroundTruth(const py::object& gt) {
   if (py::isinstance<GroundTruth>(gt)) return gt.cast<GroundTruth>();
   return Unwrap(ReadGroundTruth(ExistingFile(gt)));  // a path
@@ -404,6 +456,21 @@ void DefineFunctions(py::module_& m) {
   m.def("solve", [](const Graph& graph, const py::kwargs& options) {
     return SolveReleasingTheGil(ToSolverOptions(options), graph);
   }, py::arg("graph"), solve_doc.c_str());
+  static const std::string compare_doc =
+      "every formulation built from one front end (identical data) and solved the same way, as "
+      "`dynslam compare` does. Returns {formulation: {'report': SolveReport, 'metrics': dict or "
+      "None}}; metrics need ground truth (a GroundTruth or a path). start='wc': oc_a, oc_b and "
+      "oc_c start from wc's solution (SPEC §3.5; wc must come first in `formulations`); "
+      "build_options: a dict of build options (help(dynslam.build)).\n\nSolver options "
+      "(keyword arguments):\n" + SolverOptionsDoc();
+  m.def("compare", Compare, py::arg("frontend"), py::arg("gt") = py::none(),
+        py::arg("formulations") = [] {
+          std::vector<std::string> names;
+          for (const FormulationInfo& info : Formulations()) names.push_back(info.name);
+          return names;
+        }(),
+        py::arg("build_options") = py::none(), py::arg("start") = "frontend",
+        compare_doc.c_str());
   m.def("metrics", [](const Graph& graph, const py::object& gt) {
     return ParseJsonText(MetricsJson(ComputeMetrics(graph, AsGroundTruth(gt))));
   }, py::arg("graph"), py::arg("gt"), "SPEC §5 metrics as a dict shaped like metrics.json");

@@ -49,7 +49,7 @@ std::map<std::pair<int64_t, int64_t>, Pose> ByObjectAndFrame(const Graph& graph,
 }
 
 // Object-centric or hybrid: the graph carries its object poses (SPEC §5).
-bool IsObjectCentric(const Graph& graph) {
+bool CarriesObjectPoses(const Graph& graph) {
   for (const auto& [id, vertex] : graph.vertices) {
     const Role role = vertex.label.role;
     if (role == Role::kObjectPose || role == Role::kHybridMotion) return true;
@@ -122,7 +122,7 @@ std::pair<double, double> PoseError(const Pose& estimate, const Pose& truth) {
 
 std::map<std::pair<int64_t, int64_t>, Pose> EstimatedObjectPoses(const Graph& solved,
                                                                  const GroundTruth& ground_truth) {
-  if (IsObjectCentric(solved)) return CarriedObjectPoses(solved);
+  if (CarriesObjectPoses(solved)) return CarriedObjectPoses(solved);
   int64_t skipped = 0;
   return ComposeFromMotions(EstimatedMotions(solved), ground_truth, &skipped);
 }
@@ -141,7 +141,7 @@ std::map<std::pair<int64_t, int64_t>, Pose> EstimatedMotions(const Graph& solved
 
 Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
   Metrics metrics;
-  metrics.object_centric = IsObjectCentric(solved);
+  metrics.object_centric = CarriesObjectPoses(solved);
 
   std::map<int64_t, Pose> cameras;
   for (const auto& [id, vertex] : solved.vertices) {

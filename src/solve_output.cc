@@ -276,4 +276,19 @@ Expected<SolveSummary> ReadSolveSummary(const std::string& path) {
   }
 }
 
+Status AttachCovariances(const Graph& solved, const SolveReport& report,
+                         const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
+                         CovarianceReport* covariance, SolveOutputs* outputs) {
+  Expected<CovarianceReport> computed =
+      ComputeCovariances(solved, report, VerticesOfKinds(solved, kinds));
+  if (!computed.ok()) return computed.error();
+  *covariance = std::move(computed).value();
+  outputs->covariance = covariance;
+  outputs->covariance_kinds = kinds_text;
+  if (outputs->ground_truth != nullptr && covariance->weak_directions.empty()) {
+    outputs->consistency = ComputeConsistency(solved, *covariance, *outputs->ground_truth);
+  }
+  return Status::Ok();
+}
+
 }  // namespace dynslam

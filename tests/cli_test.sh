@@ -197,6 +197,17 @@ else
   failed=$((failed + 1)); echo "FAIL: --compat dynosam:2 did not put Huber 1e-4 on hybrid_point edges"
 fi
 
+# docs/OPTIONS.md is what `dynslam options` prints from the option tables (issue 43): the list
+# cannot fall behind the code.
+if "$dynslam" options | cmp -s - "$root/docs/OPTIONS.md"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: docs/OPTIONS.md differs from 'dynslam options' (regenerate: dynslam options > docs/OPTIONS.md)"
+fi
+check "solve --help groups its options" 0 "$dynslam" solve --help
+expect_output "the stopping group lists --remaining-chi2" "^stopping:"
+expect_output "two examples" "^examples:"
+
 # simulate finds the embedded KITTI data from wherever it is run.
 check "simulate --seq 0003 from another directory" 0 env -C "$work" "$dynslam" simulate --seq 0003 --frames 0:5 --out "$work/anywhere"
 if [ -s "$work/anywhere.g2o" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: simulate from another directory wrote nothing"; fi

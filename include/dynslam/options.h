@@ -195,6 +195,39 @@ std::optional<std::string> ApplyOptions(
   return std::nullopt;
 }
 
+// The table as Markdown, one section per group (docs/OPTIONS.md): name (Python keyword, JSON
+// key), flag, values, default, what it does.
+template <typename Options>
+std::string OptionsMarkdown(const OptionTable<Options>& table) {
+  const Options defaults;
+  std::vector<std::string> groups;
+  for (const Option<Options>& option : table) {
+    bool seen = false;
+    for (const std::string& group : groups) seen = seen || group == option.group;
+    if (!seen) groups.push_back(option.group);
+  }
+  std::string md;
+  for (const std::string& group : groups) {
+    md += "\n### " + group + "\n\n| option | flag | values | default | what it does |\n"
+          "|---|---|---|---|---|\n";
+    for (const Option<Options>& option : table) {
+      if (option.group != group) continue;
+      std::string values = option.metavar;
+      for (char& c : values) c = c == '|' ? '/' : c;  // a Markdown cell
+      std::string help = option.help;
+      if (!option.aliases.empty()) {
+        help += " (earlier spelling:";
+        for (const std::string& alias : option.aliases) help += " `" + alias + "`";
+        help += ")";
+      }
+      const std::string shown = option.get(defaults);
+      md += "| `" + option.name + "` | `--" + FlagName(option.name) + "` | " + values + " | " +
+            (shown.empty() ? "none" : "`" + shown + "`") + " | " + help + " |\n";
+    }
+  }
+  return md;
+}
+
 }  // namespace dynslam
 
 #endif  // DYNSLAM_OPTIONS_H_

@@ -59,6 +59,13 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 // and `outputs.ground_truth`; part of WriteSolveOutputs.
 Status WriteExportedTrajectories(const std::string& dir, const SolveOutputs& outputs);
 
+// The covariances of `kinds` of `solved` (as `report` solved it) into *covariance, attached to
+// *outputs with `kinds_text`, and their NEES when outputs has ground truth and no direction is
+// weak. The library's error, when there is one (then nothing is attached).
+Status AttachCovariances(const Graph& solved, const SolveReport& report,
+                         const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
+                         CovarianceReport* covariance, SolveOutputs* outputs);
+
 // summary.json's "solver" entry for `options` as a solve used them (no auto left: ResolveAuto),
 // as JSON text. Two solves whose texts are equal ran with the same options.
 std::string SolverOptionsJson(const SolverOptions& options);

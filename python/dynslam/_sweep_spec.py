@@ -176,14 +176,13 @@ def _formulations(path, value):
 
 
 def option_flags(options):
-    """A TOML table of `dynslam solve` options -> its flags: `max_iterations = 5` is
-    `--max-iterations=5`, `fix_first = true` is `--fix-first` (false: left out)."""
+    """A TOML table of `dynslam solve` options (docs/OPTIONS.md) -> its flags: `max_iterations =
+    5` is `--max-iterations=5`, a switch `extrapolation = false` is `--extrapolation=off`."""
     flags = []
     for key, value in options.items():
         flag = "--" + key.replace("_", "-")
         if isinstance(value, bool):
-            if value:
-                flags.append(flag)
+            flags.append(f"{flag}={'on' if value else 'off'}")
         else:
             flags.append(f"{flag}={value}")
     return flags
