@@ -5,7 +5,7 @@ takes SOLUTION's value; everything else (edges, labels, other vertices) is copie
     scripts/warm_start.py GRAPH SOLUTION OUT
 
 For example oc_b from oc_a's solution (both built from one front-end file by `dynslam compare`
-share their vertex ids; README, "Local minima of the kinematic factor"):
+share their vertex ids; docs/CONVERGENCE.md on local minima):
 
     scripts/warm_start.py out/demo/kitti_0004/oc_b/graph.g2o \\
         out/demo/kitti_0004/oc_a/solution.g2o /tmp/oc_b_warm.g2o

@@ -364,3 +364,11 @@ def test_robust_kernels_as_text_reach_the_solver():
     report = dynslam.solve(dynslam.read_graph(graph_path("wc")), robust="point=huber:1.345",
                            max_iterations=3)
     assert report.summary()["solver"]["robust"] == "point=huber:1.345"
+
+
+def test_simulate_finds_the_embedded_kitti_data_from_anywhere(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("DYNSLAM_KITTI", raising=False)
+    assert os.path.isdir(os.path.join(dynslam.embedded_kitti_dir(), "label_02"))
+    frontend, gt = dynslam.simulate(sequence="0003", last_frame=5, seed=1)
+    assert gt.num_cameras == 5
