@@ -20,13 +20,14 @@
 #include "src/blas_runtime.h"
 #include "src/openmp_thread_cap.h"
 #include "src/segment_gauge.h"
+#include "src/stop_policy.h"
 
 namespace dynslam {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): relative and absolute error
-// tolerances, and the λ at which it gives up.
+// tolerances (its stop: stop_policy.h), and the λ at which it gives up.
 constexpr double kReleasedTolerance = 1e-5;
 constexpr double kReleasedMaxLambda = 1e5;
 // SolverOptions::extrapolation: the step quality ρ (actual / predicted decrease) of two accepted
@@ -419,10 +420,10 @@ class ConvergenceRecorder : public ceres::IterationCallback {
  public:
   using Clock = std::chrono::steady_clock;
   // `scratch` is used only when options.on_accepted_state is set; `gauges` are the segments
-  // SolverOptions::gauge_moves moves; `start` is where options.max_time counts from.
+  // SolverOptions::gauge_moves moves; `policy` says when to stop.
   ConvergenceRecorder(const SolverOptions& options, const Assembly* assembly, Graph* scratch,
-                      const SegmentGauges* gauges, Clock::time_point start)
-      : options_(options), assembly_(assembly), scratch_(scratch), gauges_(gauges), start_(start),
+                      const SegmentGauges* gauges, const StopPolicy* policy)
+      : options_(options), assembly_(assembly), scratch_(scratch), gauges_(gauges), policy_(policy),
         extrapolating_(options.extrapolation),
         moving_gauges_(options.gauge_moves && !gauges->empty()) {}
 
@@ -490,20 +491,11 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   bool TakeGaugeMoveRequest() { return std::exchange(gauge_move_requested_, false); }
   // Gauge moves stop for the rest of the solve (after one that did not lower the cost).
   void StopMovingGauges() { moving_gauges_ = false; }
-  // True when the request is the check before a remaining-χ² stop: the solve stops unless the
-  // extrapolation gains more than the rule allows (ConfirmStop).
-  bool probing() const { return !probe_detail_.empty(); }
-  void ConfirmStop(double gained_chi2) {
-    char gained[96];
-    std::snprintf(gained, sizeof gained, "; extrapolating gained %.3g", gained_chi2);
-    Stop("convergence", probe_detail_ + gained);
-    probe_detail_.clear();
-  }
-  void ContinueAfterProbe() { probe_detail_.clear(); }
-  // After an extrapolation the linear solves reached SolverOptions::max_iterations.
-  void StopAtStepLimit() {
-    Stop("no_convergence", std::to_string(options_.max_iterations) + " linear solves, the limit");
-  }
+  // The remaining-χ² stop that ended the segment to probe it with an extrapolation first, else
+  // nothing; taking it clears it.
+  std::optional<StopDecision> TakeProbe() { return std::exchange(probe_, std::nullopt); }
+  // Ends the solve with `decision`'s termination (Ceres has stopped, or will at the next step).
+  void Stop(StopDecision decision) { stop_ = std::move(decision); }
   // Extrapolation stops for the rest of the solve (after one that found no lower cost).
   void StopExtrapolating() {
     extrapolating_ = false;
@@ -518,42 +510,21 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   }
   double radius() const { return radius_; }
   std::vector<StepRecord> TakeRows() { return std::move(rows_); }
-  // The termination the recorder ended the solve with ("interrupted", "time_limit", or, under
-  // the released rule, "convergence" or "no_convergence"), else empty; and why.
-  const std::string& stop_reason() const { return stop_reason_; }
-  const std::string& stop_detail() const { return stop_detail_; }
+  // How the policy ended the solve (USER_SUCCESS in Ceres's terms), when it did.
+  const std::optional<StopDecision>& stop() const { return stop_; }
 
  private:
   // Ceres keeps the last accepted state when a callback ends the solve (USER_SUCCESS).
   bool StopRequested() {
-    const int steps = static_cast<int>(rows_.size());
-    if (options_.should_stop && options_.should_stop()) {
-      Stop("interrupted", "stopped on request after " + std::to_string(steps) + " steps");
-    } else if (options_.max_time > 0 &&
-               std::chrono::duration<double>(Clock::now() - start_).count() >= options_.max_time) {
-      Stop("time_limit", "time limit reached after " + std::to_string(steps) + " steps");
-    } else if (options_.dsc_released_lm && !rows_.empty() && rows_.back().accepted) {
-      if (rows_.back().cost - rows_.back().trial_cost <= kReleasedTolerance) {
-        Stop("convergence", "released rule: an accepted step lowered the cost by <= 1e-5");
-      } else if (accepted_ >= options_.max_iterations) {
-        Stop("no_convergence", "released rule: " + std::to_string(accepted_) + " iterations");
-      }
-    } else if (options_.remaining_chi2 > 0) {
-      const double remaining = EstimatedRemainingChi2();
-      if (remaining <= options_.remaining_chi2) {
-        char detail[160];
-        std::snprintf(detail, sizeof detail,
-                      "the chi2 still to gain is estimated at %.3g <= remaining_chi2 %g",
-                      remaining, options_.remaining_chi2);
-        if (extrapolating_ && !two_before_.empty()) {  // measure first: Solve extrapolates
-          extrapolation_from_ = two_before_;
-          probe_detail_ = detail;
-          return true;
-        }
-        Stop("convergence", detail);
-      }
+    std::optional<StopDecision> stop = policy_->Check(rows_, accepted_);
+    if (!stop) return false;
+    if (stop->after_probe && extrapolating_ && !two_before_.empty()) {  // RunSegments probes
+      extrapolation_from_ = two_before_;
+      probe_ = std::move(stop);
+    } else {
+      stop_ = std::move(stop);
     }
-    return !stop_reason_.empty();
+    return true;
   }
   static bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
   // SolverOptions::gauge_moves: the last row is an accepted linear solve of quality
@@ -578,43 +549,12 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     }
     return true;
   }
-  // The χ² still to gain after the last step (docs/SOLVER.md "When a solve stops"), told only
-  // when the last two steps were accepted decreases, the later one smaller: twice the rest of
-  // the geometric series of their ratio r, d·r/(1 − r), and never less than twice the last
-  // step's actual or predicted decrease d, nor than twice what the 1-D quadratic that explains
-  // the step's quality ρ ∈ (1, 2) leaves along the step, d·(ρ − 1)²/((2 − ρ)·ρ) (a model whose
-  // curvature is 1/(2 − ρ) times too high: its steps undershoot). +inf otherwise.
-  double EstimatedRemainingChi2() const {
-    if (rows_.size() < 2) return kInfinity;
-    const StepRecord& last = rows_.back();
-    const StepRecord& before = rows_[rows_.size() - 2];
-    if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
-    // An extrapolation or gauge move breaks the series: the step after it also corrects its
-    // overshoot, so the ratio is read only from the second and third steps after one.
-    for (size_t i = rows_.size() >= 3 ? rows_.size() - 3 : 0; i < rows_.size(); ++i) {
-      if (!IsLinearSolve(rows_[i])) return kInfinity;
-    }
-    const double decrease = last.cost - last.trial_cost;
-    const double ratio = decrease / (before.cost - before.trial_cost);
-    if (!(decrease > 0) || !(ratio > 0 && ratio < 1)) return kInfinity;
-    const double rho = last.relative_decrease;
-    if (rho >= 2) return kInfinity;
-    const double along_the_step =
-        rho > 1 ? decrease * (rho - 1) * (rho - 1) / ((2 - rho) * rho) : 0;
-    const double series = std::max(decrease, decrease / rho) * std::max(1.0, ratio / (1 - ratio));
-    return 2 * std::max(series, along_the_step);
-  }
-  void Stop(const char* reason, std::string detail) {
-    stop_reason_ = reason;
-    stop_detail_ = std::move(detail);
-  }
-
   const SolverOptions& options_;
   const Assembly* assembly_;
   Graph* scratch_;
   const SegmentGauges* gauges_;
-  const Clock::time_point start_;
-  std::string stop_reason_, stop_detail_;
+  const StopPolicy* policy_;
+  std::optional<StopDecision> stop_;
   std::vector<StepRecord> rows_;
   double accepted_cost_ = 0;
   double radius_ = 1;
@@ -627,7 +567,7 @@ class ConvergenceRecorder : public ceres::IterationCallback {
   bool gauge_move_requested_ = false;  // set when the segment ended to move the gauges
   Assembly::Values two_before_, before_;  // the states two accepted steps back and one back
   Assembly::Values extrapolation_from_;  // set when the segment ended to extrapolate
-  std::string probe_detail_;             // the remaining-χ² stop the extrapolation checks
+  std::optional<StopDecision> probe_;    // the remaining-χ² stop the extrapolation checks
 };
 
 // SolverOptions::extrapolation: from the state `from` two accepted steps back to the assembly's
@@ -814,8 +754,9 @@ struct SegmentTimes {
 // that and runs Ceres again from there, with the trust region it had and the iterations left.
 // `summary` is the last run's.
 SegmentTimes RunSegments(const SolverOptions& options, const SegmentGauges& gauges,
-                         ceres::Solver::Options* ceres_options, ConvergenceRecorder* recorder,
-                         Assembly* assembly, ceres::Solver::Summary* summary) {
+                         const StopPolicy& policy, ceres::Solver::Options* ceres_options,
+                         ConvergenceRecorder* recorder, Assembly* assembly,
+                         ceres::Solver::Summary* summary) {
   using Clock = ConvergenceRecorder::Clock;
   const Clock::time_point first_run = Clock::now();
   auto since_first_run = [&] {
@@ -831,6 +772,7 @@ SegmentTimes RunSegments(const SolverOptions& options, const SegmentGauges& gaug
     const double start = since_first_run();
     const double cost = recorder->rows().empty() ? 0 : recorder->rows().back().trial_cost;
     const bool gauge_move = recorder->TakeGaugeMoveRequest();
+    const std::optional<StopDecision> probe = recorder->TakeProbe();
     const Assembly::Values from =
         gauge_move ? Assembly::Values() : recorder->TakeExtrapolationRequest();
     if (!gauge_move && from.empty()) return times;  // Ceres stopped the run itself
@@ -844,18 +786,17 @@ SegmentTimes RunSegments(const SolverOptions& options, const SegmentGauges& gaug
     times.AddMove(since_first_run() - start);
     if (gauge_move) {
       if (!row) recorder->StopMovingGauges();
-    } else if (recorder->probing()) {
+    } else if (probe) {
       const double gained_chi2 = row ? 2 * (cost - row->trial_cost) : 0;
-      if (gained_chi2 <= options.remaining_chi2) {
-        recorder->ConfirmStop(gained_chi2);
+      if (std::optional<StopDecision> stop = policy.AfterProbe(*probe, gained_chi2)) {
+        recorder->Stop(std::move(*stop));
         return times;
       }
-      recorder->ContinueAfterProbe();
     } else if (!row) {
       recorder->StopExtrapolating();
     }
     if (recorder->linear_solves() >= max_linear_solves) {
-      recorder->StopAtStepLimit();
+      recorder->Stop(policy.StepLimit());
       return times;
     }
     ceres_options->max_num_iterations = max_linear_solves - recorder->linear_solves();
@@ -924,7 +865,8 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
       options.gauge_moves ? assembly.FindSegmentGauges(*graph) : SegmentGauges();
   ceres_options.update_state_every_iteration =
       options.on_accepted_state || options.extrapolation || !gauges.empty();
-  ConvergenceRecorder recorder(options, &assembly, &scratch, &gauges, start);
+  const StopPolicy policy(options, start);
+  ConvergenceRecorder recorder(options, &assembly, &scratch, &gauges, &policy);
   ceres_options.callbacks.push_back(&recorder);
   ceres::Solver::Summary summary;
   UseOpenBlasThreads(options.threads);       // src/blas_runtime.h
@@ -936,7 +878,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
         "libopenblas0-pthread, docs/DEPENDENCIES.md)");
   }
   const SegmentTimes times =
-      RunSegments(options, gauges, &ceres_options, &recorder, &assembly, &summary);
+      RunSegments(options, gauges, policy, &ceres_options, &recorder, &assembly, &summary);
 
   report.extrapolations = recorder.extrapolations();
   report.gauge_moves = recorder.gauge_moves();
@@ -958,9 +900,9 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
     case ceres::CONVERGENCE: report.termination = "convergence"; break;
     case ceres::NO_CONVERGENCE: report.termination = "no_convergence"; break;
     case ceres::USER_SUCCESS:
-      report.termination = recorder.stop_reason();
+      report.termination = recorder.stop()->termination;
       report.termination_detail =
-          recorder.stop_detail() + "; the solution is the best accepted state";
+          recorder.stop()->detail + "; the solution is the best accepted state";
       break;
     default: report.termination = "failure"; break;
   }

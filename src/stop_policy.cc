@@ -1,0 +1,106 @@
+#include "src/stop_policy.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+
+namespace dynslam {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): the decrease of an accepted
+// step at which it stops.
+constexpr double kReleasedTolerance = 1e-5;
+
+bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
+
+}  // namespace
+
+std::optional<StopDecision> StopPolicy::Check(const std::vector<StepRecord>& rows,
+                                              int accepted) const {
+  const int steps = static_cast<int>(rows.size());
+  for (std::optional<StopDecision> stop :
+       {Interrupted(steps), TimeLimit(steps), ReleasedRule(rows, accepted), RemainingChi2(rows)}) {
+    if (stop) return stop;
+  }
+  return std::nullopt;
+}
+
+std::optional<StopDecision> StopPolicy::Interrupted(int steps) const {
+  if (!options_.should_stop || !options_.should_stop()) return std::nullopt;
+  return StopDecision{"interrupted", "stopped on request after " + std::to_string(steps) + " steps"};
+}
+
+std::optional<StopDecision> StopPolicy::TimeLimit(int steps) const {
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  if (!(options_.max_time > 0) || elapsed < options_.max_time) return std::nullopt;
+  return StopDecision{"time_limit", "time limit reached after " + std::to_string(steps) + " steps"};
+}
+
+std::optional<StopDecision> StopPolicy::ReleasedRule(const std::vector<StepRecord>& rows,
+                                                     int accepted) const {
+  if (!options_.dsc_released_lm || rows.empty() || !rows.back().accepted) return std::nullopt;
+  if (rows.back().cost - rows.back().trial_cost <= kReleasedTolerance) {
+    return StopDecision{"convergence", "released rule: an accepted step lowered the cost by <= 1e-5"};
+  }
+  if (accepted >= options_.max_iterations) {
+    return StopDecision{"no_convergence",
+                        "released rule: " + std::to_string(accepted) + " iterations"};
+  }
+  return std::nullopt;
+}
+
+std::optional<StopDecision> StopPolicy::RemainingChi2(const std::vector<StepRecord>& rows) const {
+  if (options_.dsc_released_lm) return std::nullopt;  // its own rule
+  const double remaining = EstimatedRemainingChi2(rows);
+  if (!WithinRemainingChi2(remaining)) return std::nullopt;
+  char detail[160];
+  std::snprintf(detail, sizeof detail,
+                "the chi2 still to gain is estimated at %.3g <= remaining_chi2 %g", remaining,
+                options_.remaining_chi2);
+  return StopDecision{"convergence", detail, /*after_probe=*/true};
+}
+
+bool StopPolicy::WithinRemainingChi2(double chi2) const {
+  return options_.remaining_chi2 > 0 && chi2 <= options_.remaining_chi2;
+}
+
+std::optional<StopDecision> StopPolicy::AfterProbe(const StopDecision& probe,
+                                                   double gained_chi2) const {
+  if (!WithinRemainingChi2(gained_chi2)) return std::nullopt;
+  char gained[96];
+  std::snprintf(gained, sizeof gained, "; extrapolating gained %.3g", gained_chi2);
+  return StopDecision{probe.termination, probe.detail + gained};
+}
+
+StopDecision StopPolicy::StepLimit() const {
+  return {"no_convergence", std::to_string(options_.max_iterations) + " linear solves, the limit"};
+}
+
+// The χ² still to gain after the last step (docs/SOLVER.md "When a solve stops"), told only
+// when the last two steps were accepted decreases, the later one smaller: twice the rest of
+// the geometric series of their ratio r, d·r/(1 − r), and never less than twice the last
+// step's actual or predicted decrease d, nor than twice what the 1-D quadratic that explains
+// the step's quality ρ ∈ (1, 2) leaves along the step, d·(ρ − 1)²/((2 − ρ)·ρ) (a model whose
+// curvature is 1/(2 − ρ) times too high: its steps undershoot). +inf otherwise.
+double StopPolicy::EstimatedRemainingChi2(const std::vector<StepRecord>& rows) {
+  if (rows.size() < 2) return kInfinity;
+  const StepRecord& last = rows.back();
+  const StepRecord& before = rows[rows.size() - 2];
+  if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
+  // An extrapolation or gauge move breaks the series: the step after it also corrects its
+  // overshoot, so the ratio is read only from the second and third steps after one.
+  for (size_t i = rows.size() >= 3 ? rows.size() - 3 : 0; i < rows.size(); ++i) {
+    if (!IsLinearSolve(rows[i])) return kInfinity;
+  }
+  const double decrease = last.cost - last.trial_cost;
+  const double ratio = decrease / (before.cost - before.trial_cost);
+  if (!(decrease > 0) || !(ratio > 0 && ratio < 1)) return kInfinity;
+  const double rho = last.relative_decrease;
+  if (rho >= 2) return kInfinity;
+  const double along_the_step = rho > 1 ? decrease * (rho - 1) * (rho - 1) / ((2 - rho) * rho) : 0;
+  const double series = std::max(decrease, decrease / rho) * std::max(1.0, ratio / (1 - ratio));
+  return 2 * std::max(series, along_the_step);
+}
+
+}  // namespace dynslam

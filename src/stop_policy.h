@@ -1,0 +1,61 @@
+// When a solve stops (docs/SOLVER.md "When a solve stops"), one named check per criterion, asked
+// after every step in this order: an interrupt (SolverOptions::should_stop), the time limit, the
+// released code's rule (dsc_released_lm), the remaining-χ² rule. Ceres's own tolerances and
+// step limit stop Ceres itself; the step limit across restarts is StepLimit. The solver's loop
+// (RunSegments, solver.cc) asks the policy and carries out what it says: stop, or, before a
+// remaining-χ² stop, probe with an extrapolation first and stop only if that gains at most the
+// rule's χ² (WithinRemainingChi2).
+#ifndef DYNSLAM_SRC_STOP_POLICY_H_
+#define DYNSLAM_SRC_STOP_POLICY_H_
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dynslam/solver.h"
+
+namespace dynslam {
+
+struct StopDecision {
+  std::string termination;  // "interrupted", "time_limit", "convergence", "no_convergence"
+  std::string detail;
+  // The remaining-χ² rule: stop only after an extrapolation along the last two steps has
+  // gained at most its χ² (when the solve can still extrapolate).
+  bool after_probe = false;
+};
+
+class StopPolicy {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // `start`: where options.max_time counts from.
+  StopPolicy(const SolverOptions& options, Clock::time_point start)
+      : options_(options), start_(start) {}
+
+  // After the step that produced the last of `rows` (before the first step when it is empty);
+  // `accepted` counts the accepted rows.
+  std::optional<StopDecision> Check(const std::vector<StepRecord>& rows, int accepted) const;
+
+  // The remaining-χ² rule's test, for the estimate after a step and for what a probing
+  // extrapolation gained: on, and `chi2` at most its bound.
+  bool WithinRemainingChi2(double chi2) const;
+  // The decision once a probe gained `gained_chi2`, or nothing: the solve goes on.
+  std::optional<StopDecision> AfterProbe(const StopDecision& probe, double gained_chi2) const;
+  StopDecision StepLimit() const;
+
+  // The χ² still to gain after the last of `rows`, +inf when the rows cannot tell.
+  static double EstimatedRemainingChi2(const std::vector<StepRecord>& rows);
+
+ private:
+  std::optional<StopDecision> Interrupted(int steps) const;
+  std::optional<StopDecision> TimeLimit(int steps) const;
+  std::optional<StopDecision> ReleasedRule(const std::vector<StepRecord>& rows, int accepted) const;
+  std::optional<StopDecision> RemainingChi2(const std::vector<StepRecord>& rows) const;
+
+  const SolverOptions& options_;
+  const Clock::time_point start_;
+};
+
+}  // namespace dynslam
+
+#endif  // DYNSLAM_SRC_STOP_POLICY_H_
