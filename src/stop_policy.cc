@@ -14,55 +14,71 @@ constexpr double kReleasedTolerance = 1e-5;
 
 bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
 
-}  // namespace
+// The checks, each nothing or the decision to stop.
 
-std::optional<StopDecision> StopPolicy::Check(const std::vector<StepRecord>& rows,
-                                              int accepted) const {
-  const int steps = static_cast<int>(rows.size());
-  for (std::optional<StopDecision> stop :
-       {Interrupted(steps), TimeLimit(steps), ReleasedRule(rows, accepted), RemainingChi2(rows)}) {
-    if (stop) return stop;
-  }
-  return std::nullopt;
-}
-
-std::optional<StopDecision> StopPolicy::Interrupted(int steps) const {
-  if (!options_.should_stop || !options_.should_stop()) return std::nullopt;
+std::optional<StopDecision> Interrupted(const SolverOptions& options, int steps) {
+  if (!options.should_stop || !options.should_stop()) return std::nullopt;
   return StopDecision{"interrupted", "stopped on request after " + std::to_string(steps) + " steps"};
 }
 
-std::optional<StopDecision> StopPolicy::TimeLimit(int steps) const {
-  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  if (!(options_.max_time > 0) || elapsed < options_.max_time) return std::nullopt;
+std::optional<StopDecision> TimeLimit(const SolverOptions& options, StopPolicy::Clock::time_point start,
+                                      int steps) {
+  if (!(options.max_time > 0)) return std::nullopt;
+  if (std::chrono::duration<double>(StopPolicy::Clock::now() - start).count() < options.max_time) {
+    return std::nullopt;
+  }
   return StopDecision{"time_limit", "time limit reached after " + std::to_string(steps) + " steps"};
 }
 
-std::optional<StopDecision> StopPolicy::ReleasedRule(const std::vector<StepRecord>& rows,
-                                                     int accepted) const {
-  if (!options_.dsc_released_lm || rows.empty() || !rows.back().accepted) return std::nullopt;
+std::optional<StopDecision> ReleasedRule(const SolverOptions& options,
+                                         const std::vector<StepRecord>& rows, int accepted) {
+  if (!options.dsc_released_lm || rows.empty() || !rows.back().accepted) return std::nullopt;
   if (rows.back().cost - rows.back().trial_cost <= kReleasedTolerance) {
     return StopDecision{"convergence", "released rule: an accepted step lowered the cost by <= 1e-5"};
   }
-  if (accepted >= options_.max_iterations) {
+  if (accepted >= options.max_iterations) {
     return StopDecision{"no_convergence",
                         "released rule: " + std::to_string(accepted) + " iterations"};
   }
   return std::nullopt;
 }
 
-std::optional<StopDecision> StopPolicy::RemainingChi2(const std::vector<StepRecord>& rows) const {
-  if (options_.dsc_released_lm) return std::nullopt;  // its own rule
-  const double remaining = EstimatedRemainingChi2(rows);
-  if (!WithinRemainingChi2(remaining)) return std::nullopt;
+// The remaining-χ² rule's bound on the χ² still to gain, or nothing when the rule is off: the
+// one place that reads SolverOptions::remaining_chi2.
+std::optional<double> RemainingChi2Bound(const SolverOptions& options) {
+  if (!(options.remaining_chi2 > 0)) return std::nullopt;
+  return options.remaining_chi2;
+}
+
+std::optional<StopDecision> RemainingChi2(const SolverOptions& options,
+                                          const std::vector<StepRecord>& rows) {
+  if (options.dsc_released_lm) return std::nullopt;  // its own rule
+  const std::optional<double> bound = RemainingChi2Bound(options);
+  const double remaining = StopPolicy::EstimatedRemainingChi2(rows);
+  if (!bound || !(remaining <= *bound)) return std::nullopt;
   char detail[160];
   std::snprintf(detail, sizeof detail,
                 "the chi2 still to gain is estimated at %.3g <= remaining_chi2 %g", remaining,
-                options_.remaining_chi2);
+                *bound);
   return StopDecision{"convergence", detail, /*after_probe=*/true};
 }
 
+}  // namespace
+
+std::optional<StopDecision> StopPolicy::Check(const std::vector<StepRecord>& rows,
+                                              int accepted) const {
+  const int steps = static_cast<int>(rows.size());
+  for (std::optional<StopDecision> stop :
+       {Interrupted(options_, steps), TimeLimit(options_, start_, steps),
+        ReleasedRule(options_, rows, accepted), RemainingChi2(options_, rows)}) {
+    if (stop) return stop;
+  }
+  return std::nullopt;
+}
+
 bool StopPolicy::WithinRemainingChi2(double chi2) const {
-  return options_.remaining_chi2 > 0 && chi2 <= options_.remaining_chi2;
+  const std::optional<double> bound = RemainingChi2Bound(options_);
+  return bound && chi2 <= *bound;
 }
 
 std::optional<StopDecision> StopPolicy::AfterProbe(const StopDecision& probe,

@@ -1,7 +1,7 @@
-// When a solve stops (docs/SOLVER.md "When a solve stops"), one named check per criterion, asked
-// after every step in this order: an interrupt (SolverOptions::should_stop), the time limit, the
-// released code's rule (dsc_released_lm), the remaining-χ² rule. Ceres's own tolerances and
-// step limit stop Ceres itself; the step limit across restarts is StepLimit. The solver's loop
+// When a solve stops (docs/SOLVER.md "When a solve stops"): one named check per criterion
+// (stop_policy.cc), asked after every step in the order StopPolicy::Check lists them. Ceres's own
+// tolerances and step limit stop Ceres itself; the step limit across restarts is StepLimit. The
+// solver's loop
 // (RunSegments, solver.cc) asks the policy and carries out what it says: stop, or, before a
 // remaining-χ² stop, probe with an extrapolation first and stop only if that gains at most the
 // rule's χ² (WithinRemainingChi2).
@@ -47,11 +47,6 @@ class StopPolicy {
   static double EstimatedRemainingChi2(const std::vector<StepRecord>& rows);
 
  private:
-  std::optional<StopDecision> Interrupted(int steps) const;
-  std::optional<StopDecision> TimeLimit(int steps) const;
-  std::optional<StopDecision> ReleasedRule(const std::vector<StepRecord>& rows, int accepted) const;
-  std::optional<StopDecision> RemainingChi2(const std::vector<StepRecord>& rows) const;
-
   const SolverOptions& options_;
   const Clock::time_point start_;
 };
