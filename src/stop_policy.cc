@@ -43,6 +43,19 @@ std::optional<StopDecision> ReleasedRule(const SolverOptions& options,
   return std::nullopt;
 }
 
+// GTSAM's absoluteErrorTol: an accepted linear solve that lowered the cost by at most it.
+std::optional<StopDecision> AbsoluteDecrease(const SolverOptions& options,
+                                             const std::vector<StepRecord>& rows) {
+  if (!(options.absolute_decrease > 0) || rows.empty()) return std::nullopt;
+  const StepRecord& last = rows.back();
+  if (!last.accepted || !IsLinearSolve(last)) return std::nullopt;
+  if (last.cost - last.trial_cost > options.absolute_decrease) return std::nullopt;
+  char detail[96];
+  std::snprintf(detail, sizeof detail, "an accepted step lowered the cost by <= absolute_decrease %g",
+                options.absolute_decrease);
+  return StopDecision{"convergence", detail};
+}
+
 // The remaining-χ² rule's bound on the χ² still to gain, or nothing when the rule is off: the
 // one place that reads SolverOptions::remaining_chi2.
 std::optional<double> RemainingChi2Bound(const SolverOptions& options) {
@@ -70,7 +83,8 @@ std::optional<StopDecision> StopPolicy::Check(const std::vector<StepRecord>& row
   const int steps = static_cast<int>(rows.size());
   for (std::optional<StopDecision> stop :
        {Interrupted(options_, steps), TimeLimit(options_, start_, steps),
-        ReleasedRule(options_, rows, accepted), RemainingChi2(options_, rows)}) {
+        ReleasedRule(options_, rows, accepted), AbsoluteDecrease(options_, rows),
+        RemainingChi2(options_, rows)}) {
     if (stop) return stop;
   }
   return std::nullopt;

@@ -64,6 +64,7 @@ struct SolverOptions {
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
   double remaining_chi2 = 0.01;
+  double absolute_decrease = 0;  // 0: off
   bool extrapolation = true;
   bool gauge_moves = false;
   double initial_lambda = 0;    // 0: auto
@@ -160,6 +161,10 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
              "gain is estimated at most this: every variable then within sqrt(X) of its "
              "marginal sigma of the optimum; 0: off (docs/SOLVER.md)",
              0, 1e300),
+        Real("absolute_decrease", "stopping", &O::absolute_decrease,
+             "stop after an accepted step that lowered the cost by at most this (GTSAM's "
+             "absoluteErrorTol); 0: off",
+             0, 1e300),
         Switch("eliminate_object_points", "model", &O::eliminate_object_points,
                "Schur solvers: eliminate object-frame points first too (static and per-frame "
                "points always are)"),
@@ -199,20 +204,23 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
     Option<O> tolerances = Declare<O>(
         "tolerances", "stopping", OptionType::kPreset,
         "tight: Ceres's three tolerances alone, no remaining_chi2 rule, no extrapolation and no "
-        "gauge moves (to the optimum to ~1e-10 relative; the reference tests)",
-        "default|tight");
-    tolerances.values = {"default", "tight"};
-    tolerances.sets = {"remaining_chi2", "extrapolation", "gauge_moves"};
-    tolerances.get = [](const O& o) {
-      const O tight = TightRule(o);
-      return o.remaining_chi2 == tight.remaining_chi2 && o.extrapolation == tight.extrapolation &&
-                     o.gauge_moves == tight.gauge_moves
-                 ? "tight"
-                 : "default";
-    };
+        "gauge moves (to the optimum to ~1e-10 relative; the reference tests); gtsam: the stop "
+        "of GTSAM's Levenberg-Marquardt defaults, relative and absolute decrease 1e-5, at most "
+        "100 steps, without remaining_chi2, extrapolation or gauge moves",
+        "default|tight|gtsam");
+    tolerances.values = {"default", "tight", "gtsam"};
+    tolerances.sets = {"remaining_chi2", "extrapolation", "gauge_moves", "function_tolerance",
+                       "absolute_decrease", "max_iterations"};
+    tolerances.get = [](const O&) { return std::string("default"); };
     tolerances.set = [](const std::string& text, O* o) -> std::optional<std::string> {
-      if (text != "default" && text != "tight") return "'" + text + "' is not one of default|tight";
-      if (text == "tight") *o = TightRule(*o);  // default: the options as they are
+      if (text == "tight" || text == "gtsam") *o = TightRule(*o);
+      if (text == "gtsam") {  // GTSAM 4.2 LevenbergMarquardtParams' defaults
+        o->function_tolerance = 1e-5;
+        o->absolute_decrease = 1e-5;
+        o->max_iterations = 100;
+      } else if (text != "tight" && text != "default") {  // default: the options as they are
+        return "'" + text + "' is not one of default|tight|gtsam";
+      }
       return std::nullopt;
     };
     t.push_back(tolerances);
