@@ -119,6 +119,21 @@ TEST(OptionsTest, APresetRefusesAnOptionThatUndoesIt) {
   EXPECT_EQ(options.remaining_chi2, 0.5);
 }
 
+TEST(OptionsTest, TheGtsamPresetIsGtsamsLevenbergMarquardtStop) {
+  SolverOptions options;
+  ASSERT_EQ(ApplyOptions(SolverOptionTable(), {{"tolerances", "gtsam"}}, Plain, &options),
+            std::nullopt);
+  EXPECT_EQ(options.function_tolerance, 1e-5);
+  EXPECT_EQ(options.absolute_decrease, 1e-5);
+  EXPECT_EQ(options.max_iterations, 100);
+  EXPECT_EQ(options.remaining_chi2, 0);
+  EXPECT_FALSE(options.extrapolation);
+  options = {};
+  EXPECT_EQ(ApplyOptions(SolverOptionTable(), {{"tolerances", "gtsam"}, {"max_iterations", "50"}},
+                         Plain, &options),
+            "tolerances gtsam sets max_iterations 100; give one of them");
+}
+
 // summary.json's "solver" block: every option of the table but the presets, under its name, with
 // the JSON type of its kind.
 TEST(OptionsTest, TheSummarysSolverBlockIsTheTable) {

@@ -82,5 +82,19 @@ TEST(StopPolicyTest, TheReleasedRuleStopsAtASmallDecreaseOrItsIterations) {
   EXPECT_FALSE(policy.Check({Accepted(10, 9)}, 2));
 }
 
+TEST(StopPolicyTest, AbsoluteDecreaseStopsAtASmallAcceptedStep) {
+  SolverOptions options;
+  options.absolute_decrease = 1e-5;
+  options.remaining_chi2 = 0;
+  const StopPolicy policy(options, StopPolicy::Clock::now());
+  EXPECT_EQ(policy.Check({Accepted(10, 10 - 1e-6)}, 1)->termination, "convergence");
+  EXPECT_FALSE(policy.Check({Accepted(10, 9)}, 1));
+  StepRecord rejected = Accepted(10, 10);
+  rejected.accepted = false;
+  EXPECT_FALSE(policy.Check({rejected}, 0));
+  options.absolute_decrease = 0;
+  EXPECT_FALSE(policy.Check({Accepted(10, 10 - 1e-6)}, 1));
+}
+
 }  // namespace
 }  // namespace dynslam
