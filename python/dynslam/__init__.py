@@ -8,26 +8,11 @@
 
 Poses are arrays [tx ty tz qx qy qz qw]; errors are dynslam.Error with .file and .line.
 """
-import os
-import pathlib
-
 from ._version import __version__
 from . import _dynslam
+from ._sweep_tools import embedded_kitti as embedded_kitti_dir
 from ._dynslam import (FORMULATIONS, Error, Graph, GroundTruth, SolveReport, build, compare,
                        metrics, read_graph, read_ground_truth, solve, write_graph)
-
-
-def embedded_kitti_dir():
-    """The KITTI Tracking ground truth shipped with dynslam (oxts/, label_02/, calib/):
-    $DYNSLAM_KITTI, else the installed package's data/kitti_tracking, else the repository's
-    data/kitti_tracking above a module in its build tree; None when there is none."""
-    package = pathlib.Path(__file__).resolve().parent
-    candidates = [os.environ.get("DYNSLAM_KITTI") or None, package / "data" / "kitti_tracking"]
-    candidates += [parent / "data" / "kitti_tracking" for parent in package.parents]
-    for candidate in candidates:
-        if candidate and (pathlib.Path(candidate) / "label_02").is_dir():
-            return str(candidate)
-    return None
 
 
 def simulate(kitti_dir=None, sequence=None, synthetic=False, **options):

@@ -1,4 +1,4 @@
-"""Where a sweep finds the dynslam command and the embedded KITTI Tracking data."""
+"""Where the package finds the dynslam command and the embedded KITTI Tracking data."""
 import os
 import shutil
 
@@ -23,7 +23,9 @@ def find_cli():
 
 
 def embedded_kitti():
-    """The KITTI Tracking data shipped with dynslam ($DYNSLAM_KITTI first), or None."""
+    """The KITTI Tracking ground truth shipped with dynslam (oxts/, label_02/, calib/):
+    $DYNSLAM_KITTI, else the installed package's data/kitti_tracking, else the repository's
+    above a module in its build tree; None when there is none."""
     candidates = [os.environ.get("DYNSLAM_KITTI"),
                   os.path.join(_PACKAGE, "data", "kitti_tracking"),
                   os.path.join(_PACKAGE, "..", "..", "..", "..", "data", "kitti_tracking")]

@@ -10,7 +10,7 @@ DYNSLAM_PACKAGES=(
   cmake g++ make
   libceres-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libgoogle-glog-dev libgflags-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
-  python3 python3-matplotlib locales
+  python3 python3-matplotlib python3-venv locales
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-distributed python3-scipy
 )
