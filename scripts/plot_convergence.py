@@ -3,7 +3,8 @@
 
 Top: cost (χ²/2) per linear solve on a log scale, accepted steps as dots, rejected steps as
 crosses at their trial cost; a relinearisation (every accepted step) is a vertical tick.
-Bottom: the cost change of each step (cost − trial cost; negative for rejected steps), symlog.
+Middle: the cost change of each step (cost − trial cost; negative for rejected steps), symlog.
+Bottom: the cost against the time since the minimiser started (time_s), the same curves in seconds.
 
     scripts/plot_convergence.py out/wc/convergence.csv out/oc_b/convergence.csv \
         --labels wc oc_b --out fig4.png
@@ -33,6 +34,7 @@ def read_rows(path):
                 "cost": float(row["cost"]),
                 "trial": float(row["trial_cost"]),
                 "accepted": row["accepted"].strip() == "1",
+                "time": float(row["time_s"]),
             })
         except ValueError as error:
             sys.exit(f"{path}:{line}: {error}")
@@ -51,16 +53,19 @@ def main():
     if len(labels) != len(args.csv):
         sys.exit("--labels needs one label per file")
 
-    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6.5))
+    fig = plt.figure(figsize=(8, 9))
+    top = fig.add_subplot(3, 1, 1)
+    bottom = fig.add_subplot(3, 1, 2, sharex=top)
+    timed = fig.add_subplot(3, 1, 3)
     for path, label in zip(args.csv, labels):
         rows = read_rows(path)
         if not rows:
             continue
-        # The cost after each step, from the initial cost at step 0.
-        line, = top.plot([0] + [r["step"] for r in rows],
-                         [rows[0]["cost"]] + [r["trial"] if r["accepted"] else r["cost"]
-                                              for r in rows],
-                         "-", label=label)
+        # The cost after each step, from the initial cost at step 0 (time 0).
+        after = [rows[0]["cost"]] + [r["trial"] if r["accepted"] else r["cost"] for r in rows]
+        line, = top.plot([0] + [r["step"] for r in rows], after, "-", label=label)
+        timed.plot([0.0] + [r["time"] for r in rows], after, ".-", color=line.get_color(),
+                   markersize=3, label=label)
         color = line.get_color()
         accepted = [r for r in rows if r["accepted"]]
         rejected = [r for r in rows if not r["accepted"] and math.isfinite(r["trial"])]
@@ -80,6 +85,9 @@ def main():
     bottom.set_yscale("symlog", linthresh=1e-6)
     bottom.set_ylabel("cost change per step")
     bottom.set_xlabel("linear solve (step); faint lines: relinearisations")
+    timed.set_yscale("log")
+    timed.set_ylabel("cost ½χ²")
+    timed.set_xlabel("time since the minimiser started (s)")
     bottom.axhline(0, color="black", linewidth=0.5)
     fig.tight_layout()
     fig.savefig(args.out, dpi=120)
