@@ -168,6 +168,9 @@ void DrawPlots(const std::string& out_dir, const std::vector<CompareRow>& rows, 
     trajectory_args.insert(trajectory_args.end(), {"--gt", fs::absolute(gt_path, ec).string()});
   }
   draw("plot_trajectory.py", "trajectory.png", "", trajectory_args);
+  if (!gt_path.empty()) {
+    draw("plot_errors.py", "errors.png", "errors.csv", {"--title", title + ": errors per frame"});
+  }
 }
 
 // Parses --formulations LIST; false after printing the problem.
@@ -213,8 +216,9 @@ int RunCompare(int argc, char** argv) {
       "Builds every formulation from one front-end file (identical data), solves each with the\n"
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
-      "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png\n"
-      "and DIR/trajectory.png (scripts/plot_convergence.py, scripts/plot_trajectory.py).\n"
+      "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png,\n"
+      "DIR/trajectory.png and, with --gt, DIR/errors.png (scripts/plot_convergence.py,\n"
+      "scripts/plot_trajectory.py, scripts/plot_errors.py).\n"
       "--max-time limits each formulation's solve. SIGINT (Ctrl-C) or SIGTERM stops the current\n"
       "solve after its step, writes its outputs and the tables of what finished (no plots), and\n"
       "exits 130 or 143; a second signal quits at once.");
@@ -229,7 +233,7 @@ int RunCompare(int argc, char** argv) {
                    "GT");
   parser.AddString("formulations", &formulation_list,
                    "comma-separated subset of " + FormulationNames(","), "LIST");
-  parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png and DIR/trajectory.png");
+  parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png, DIR/trajectory.png and DIR/errors.png");
   std::string start = "frontend";
   parser.AddChoice("start", &start, {"frontend", "wc"},
                    "where oc_a, oc_b and oc_c start: the front end's estimates, or wc's solution "

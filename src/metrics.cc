@@ -14,8 +14,9 @@ constexpr double kDegreesPerRadian = 180.0 / M_PI;
 struct Accumulator {
   std::map<int64_t, std::vector<std::pair<double, double>>> per_object;
 
-  void Add(int64_t object, const Pose& estimate, const Pose& truth) {
+  std::pair<double, double> Add(int64_t object, const Pose& estimate, const Pose& truth) {
     per_object[object].push_back(PoseError(estimate, truth));
+    return per_object[object].back();
   }
 
   ObjectErrors Finish() const {
@@ -154,6 +155,7 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
     if (previous == cameras.end() || truth == nullptr || truth_previous == nullptr) continue;
     const auto [rot, trans] = PoseError(Compose(Inverse(previous->second), pose),
                                         Compose(Inverse(*truth_previous), *truth));
+    metrics.per_frame.push_back({"camera", -1, frame, rot, trans});
     ++metrics.camera.count;
     metrics.camera.mean_rot_deg += rot;
     metrics.camera.mean_trans_m += trans;
@@ -170,7 +172,9 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
     const Pose* truth = gt.Object(object, frame);
     const Pose* truth_previous = gt.Object(object, frame - 1);
     if (truth == nullptr || truth_previous == nullptr) continue;
-    motion_errors.Add(object, motion, Compose(*truth, Inverse(*truth_previous)));
+    const auto [rot, trans] =
+        motion_errors.Add(object, motion, Compose(*truth, Inverse(*truth_previous)));
+    metrics.per_frame.push_back({"object_motion", object, frame, rot, trans});
   }
   metrics.object_motion = motion_errors.Finish();
 
@@ -189,8 +193,9 @@ Metrics ComputeMetrics(const Graph& solved, const GroundTruth& gt) {
         truth_previous == nullptr) {
       continue;
     }
-    pose_errors.Add(object, Compose(Inverse(previous->second), current->second),
-                    Compose(Inverse(*truth_previous), *truth));
+    const auto [rot, trans] = pose_errors.Add(object, Compose(Inverse(previous->second), current->second),
+                                              Compose(Inverse(*truth_previous), *truth));
+    metrics.per_frame.push_back({"object_pose", object, frame, rot, trans});
   }
   metrics.object_pose = pose_errors.Finish();
   return metrics;

@@ -62,6 +62,17 @@ std::string ConvergenceCsv(const SolveReport& report) {
   return text;
 }
 
+// errors.csv: every per-frame error of the metrics (SPEC §4, §5).
+std::string ErrorsCsv(const Metrics& metrics) {
+  std::string text = "quantity,object,frame,rot_deg,trans_m\n";
+  for (const FrameError& e : metrics.per_frame) {
+    text += std::string(e.quantity) + "," + std::to_string(e.object) + "," +
+            std::to_string(e.frame) + "," + NumberText(e.rot_deg) + "," + NumberText(e.trans_m) +
+            "\n";
+  }
+  return text;
+}
+
 std::string CovariancesCsv(const CovarianceReport& covariance) {
   std::string out = "id,role,dim,upper_triangle\n";
   for (const MarginalCovariance& m : covariance.marginals) {
@@ -230,6 +241,12 @@ Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs) {
       {"summary.json", SummaryJson(outputs) + "\n"},
   };
   if (Status s = WriteExportedTrajectories(dir, outputs); !s.ok()) return s;
+  const std::string errors = (base / "errors.csv").string();
+  if (outputs.metrics) {
+    if (Status s = WriteFileAtomically(errors, ErrorsCsv(*outputs.metrics)); !s.ok()) return s;
+  } else if (Status s = RemoveIfPresent(errors); !s.ok()) {  // not an earlier solve's
+    return s;
+  }
   const std::string covariances = (base / "covariances.csv").string();
   if (outputs.covariance && outputs.covariance->weak_directions.empty()) {
     if (Status s = WriteFileAtomically(covariances, CovariancesCsv(*outputs.covariance)); !s.ok()) {

@@ -91,7 +91,7 @@ if /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1; then
   expect_output "malformed cameras.csv names file and line" "bad csv/cameras.csv:3: field 'zero' is not a finite number"
   if grep -q Traceback "$work/out"; then failed=$((failed + 1)); echo "FAIL: plot_trajectory printed a traceback"; else passed=$((passed + 1)); fi
   check "compare draws its plots" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare" --formulations wc
-  for file in convergence.png trajectory.png; do
+  for file in convergence.png trajectory.png errors.png wc/errors.csv; do
     if [ -s "$work/compare/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: compare drew no $file"; fi
   done
   # A failing plot script is one warning carrying the script's own last line (its output is
@@ -114,7 +114,8 @@ check "--density paper and --static-points conflict" 2 "$dynslam" simulate --kit
 check "compare without ground truth" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/compare_nogt" --formulations wc,oc_b
 expect_output "compare without ground truth says what needs it" "need ground truth"
 if [ "$(grep -c '| needs --gt | needs --gt |' "$work/compare_nogt/tables.md")" = 2 ] &&
-   [ -s "$work/compare_nogt/convergence.png" ] && ! grep -q '"metrics"' "$work/compare_nogt/oc_b/summary.json" &&
+   [ -s "$work/compare_nogt/convergence.png" ] && [ ! -e "$work/compare_nogt/errors.png" ] && [ ! -e "$work/compare_nogt/oc_b/errors.csv" ] &&
+   ! grep -q '"metrics"' "$work/compare_nogt/oc_b/summary.json" &&
    grep -q 'centroid rule' "$work/compare_nogt/oc_b/summary.json"; then
   passed=$((passed + 1))
 else

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -176,6 +177,41 @@ TEST_P(ReferenceMetricsTest, RecomputedFromTheSolutionMatchGtsamMetrics) {
     ExpectSameKeys((*ours)[family], (*expected)[family], std::string(family) + ".");
   }
   EXPECT_EQ((*ours)["object_centric"], (*expected)["object_centric"]);
+}
+
+// errors.csv's rows (Metrics::per_frame) are exactly what the tables average: per quantity and
+// object, their count and mean are the metrics' (which the test above holds to GTSAM's).
+TEST_P(ReferenceMetricsTest, PerFrameErrorsAverageToTheTables) {
+  const testing::ReferenceGraph& reference = GetParam();
+  Expected<Graph> solution =
+      ReadGraph((std::filesystem::path(reference.ProfileDir("tight_exact")) / "solution.g2o").string());
+  ASSERT_TRUE(solution.ok()) << solution.error().ToString();
+  const std::filesystem::path scene = std::filesystem::path(reference.graph_path).parent_path().parent_path();
+  Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
+  ASSERT_TRUE(gt.ok()) << gt.error().ToString();
+  const Metrics metrics = ComputeMetrics(*solution, *gt);
+  std::map<std::pair<std::string, int64_t>, ErrorMean> sums;
+  for (const FrameError& e : metrics.per_frame) {
+    ErrorMean& sum = sums[{e.quantity, e.object}];
+    ++sum.count;
+    sum.mean_rot_deg += e.rot_deg;
+    sum.mean_trans_m += e.trans_m;
+  }
+  auto expect_mean = [&](const std::string& quantity, int64_t object, const ErrorMean& mean) {
+    const ErrorMean& sum = sums[{quantity, object}];
+    ASSERT_EQ(sum.count, mean.count) << quantity << " " << object;
+    EXPECT_NEAR(sum.mean_rot_deg / sum.count, mean.mean_rot_deg, 1e-12 * (1 + mean.mean_rot_deg));
+    EXPECT_NEAR(sum.mean_trans_m / sum.count, mean.mean_trans_m, 1e-12 * (1 + mean.mean_trans_m));
+  };
+  expect_mean("camera", -1, metrics.camera);
+  size_t groups = 1;
+  for (const auto& [name, family] : {std::pair{"object_motion", &metrics.object_motion},
+                                     std::pair{"object_pose", &metrics.object_pose}}) {
+    for (const auto& [object, mean] : family->per_object) expect_mean(name, object, mean);
+    groups += family->per_object.size();
+  }
+  EXPECT_EQ(sums.size(), groups);  // no rows beyond what the tables average
+  EXPECT_GT(metrics.object_motion.count, 0);
 }
 
 // The dynamic scenes: those whose tight_exact solve has metrics.

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "dynslam/graph.h"
 #include "dynslam/ground_truth.h"
@@ -28,6 +29,16 @@ struct ObjectErrors {
   std::map<int64_t, ErrorMean> per_object;
 };
 
+// One frame's error (errors.csv, SPEC §4): the camera's relative pose error from frame − 1 to
+// `frame` (object −1), an object's motion error into `frame`, or its relative pose error there.
+struct FrameError {
+  const char* quantity = "camera";  // "camera", "object_motion" or "object_pose"
+  int64_t object = -1;
+  int64_t frame = 0;
+  double rot_deg = 0;
+  double trans_m = 0;
+};
+
 struct Metrics {
   bool object_centric = false;
   ErrorMean camera;            // relative pose error of consecutive cameras (Table I)
@@ -35,6 +46,7 @@ struct Metrics {
   ObjectErrors object_pose;    // relative error of L_{k−1}⁻¹ · L_k (Table III)
   // World-centric: segments whose first pose has no ground truth (skipped, SPEC §5).
   int64_t segments_without_ground_truth_start = 0;
+  std::vector<FrameError> per_frame;  // every error the means above average, by quantity
 };
 
 // E_r in degrees and E_t in metres of `estimate` against `truth` (SPEC §5).
