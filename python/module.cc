@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cerrno>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -136,6 +137,48 @@ py::dict Vertices(const Graph& graph, const std::string& role_name) {
   out["frame"] = frame;
   out["tracklet"] = tracklet;
   out["value"] = values;
+  return out;
+}
+
+// A copy of `graph` with the values of the vertices `ids` replaced by the rows of `values`
+// (n×7 poses [tx ty tz qx qy qz qw], quaternions normalised, or n×3 points): the inverse of
+// Vertices(), for initial values computed with NumPy.
+Graph WithValues(const Graph& graph,
+                 const py::array_t<int64_t, py::array::c_style | py::array::forcecast>& ids,
+                 const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+  if (ids.ndim() != 1 || values.ndim() != 2 || values.shape(0) != ids.shape(0) ||
+      (values.shape(1) != 7 && values.shape(1) != 3)) {
+    throw py::value_error("values: one row per id, 7 columns (poses) or 3 (points)");
+  }
+  const bool poses = values.shape(1) == 7;
+  Graph out = graph;
+  for (py::ssize_t i = 0; i < ids.shape(0); ++i) {
+    auto it = out.vertices.find(ids.at(i));
+    if (it == out.vertices.end()) {
+      throw py::value_error("id " + std::to_string(ids.at(i)) + " is not a vertex of the graph");
+    }
+    if ((it->second.type == VertexType::kPose) != poses) {
+      throw py::value_error("vertex " + std::to_string(ids.at(i)) + " is a " +
+                            (poses ? "point: give 3 columns" : "pose: give 7 columns"));
+    }
+    const double* row = values.data(i, 0);
+    for (py::ssize_t k = 0; k < values.shape(1); ++k) {
+      if (!std::isfinite(row[k])) {
+        throw py::value_error("vertex " + std::to_string(ids.at(i)) + ": a value is not finite");
+      }
+    }
+    if (!poses) {
+      it->second.point() = Eigen::Vector3d(row[0], row[1], row[2]);
+      continue;
+    }
+    const Eigen::Quaterniond q(row[6], row[3], row[4], row[5]);  // w, x, y, z
+    if (!(q.norm() > 1e-12)) {
+      throw py::value_error("vertex " + std::to_string(ids.at(i)) + ": a zero quaternion");
+    }
+    const bool unit = std::abs(q.norm() - 1) < 1e-15;  // as vertices() gave it: exactly
+    it->second.set_pose(Pose::FromRotationTranslation(unit ? q : q.normalized(),
+                                                      Eigen::Vector3d(row[0], row[1], row[2])));
+  }
   return out;
 }
 
@@ -354,6 +397,9 @@ void DefineTypes(py::module_& m) {
       .def_property_readonly("num_edges", &Graph::NumEdges)
       .def_property_readonly("formulation", [](const Graph& g) { return g.formulation; })
       .def_property_readonly("edges_by_kind", EdgesByKind)
+      .def("with_values", WithValues, py::arg("ids"), py::arg("values"),
+           "a copy with the values of vertices `ids` replaced by the rows of `values` (n×7 poses "
+           "[tx ty tz qx qy qz qw], quaternions normalised, or n×3 points), as vertices() gives them")
       .def("vertices", Vertices, py::arg("role"),
            "ids, object, frame, tracklet (int64 arrays) and value (n×7 poses [tx ty tz qx qy qz "
            "qw] or n×3 points) of the vertices with this role")

@@ -372,3 +372,22 @@ def test_simulate_finds_the_embedded_kitti_data_from_anywhere(tmp_path, monkeypa
     assert os.path.isdir(os.path.join(dynslam.embedded_kitti_dir(), "label_02"))
     frontend, gt = dynslam.simulate(sequence="0003", last_frame=5, seed=1)
     assert gt.num_cameras == 5
+
+
+def test_values_out_of_and_into_arrays():
+    """vertices() and with_values() are inverses; the edited graph solves from the new values."""
+    graph = dynslam.read_graph(graph_path("oc_b"))
+    cameras = graph.vertices("camera")
+    moved = cameras["value"].copy()
+    moved[:, 0] += 0.5  # every camera half a metre along x
+    edited = graph.with_values(cameras["id"], moved)
+    assert np.allclose(edited.vertices("camera")["value"], moved)
+    assert np.array_equal(graph.vertices("camera")["value"], cameras["value"])  # a copy
+    assert dynslam.solve(edited).initial_cost > dynslam.solve(graph).initial_cost
+    again = edited.with_values(cameras["id"], cameras["value"])
+    assert np.array_equal(again.vertices("camera")["value"], cameras["value"])
+    points = graph.vertices("static_point")
+    with pytest.raises(ValueError, match="is a point: give 3 columns"):
+        graph.with_values(points["id"][:1], moved[:1])
+    with pytest.raises(ValueError, match="is not a vertex"):
+        graph.with_values([123456789], moved[:1])
