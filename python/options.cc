@@ -54,23 +54,41 @@ Options Apply(const Setters<Options>& setters, const py::kwargs& kwargs) {
   return options;
 }
 
+// numpy.bool_, or an empty handle without NumPy; kept for the life of the process (released, so
+// that nothing is destroyed after the interpreter).
+py::handle NumpyBool() {
+  static const py::handle type = []() -> py::handle {
+    try {
+      return py::object(py::module_::import("numpy").attr("bool_")).release();
+    } catch (const py::error_already_set&) {
+      return py::handle();
+    }
+  }();
+  return type;
+}
+
 // A keyword argument's value as the option's text: TypeError when its Python type does not fit.
 template <typename Options>
 std::string TextOf(const Option<Options>& option, py::handle value) {
-  const bool is_bool = py::isinstance<py::bool_>(value);
-  const bool is_int = py::isinstance<py::int_>(value) && !is_bool;
+  // NumPy scalars too: an integer is anything with __index__ (np.int64), a float anything with
+  // __float__ (np.float32); a bool is neither.
+  const bool is_bool = py::isinstance<py::bool_>(value) ||
+                       (NumpyBool() && py::isinstance(value, NumpyBool()));
+  const bool is_int = !is_bool && PyIndex_Check(value.ptr());
+  const bool is_float = !is_bool && !py::isinstance<py::str>(value) &&
+                        (is_int || PyFloat_Check(value.ptr()) || py::hasattr(value, "__float__"));
   const char* expected = nullptr;
   switch (option.type) {
     case OptionType::kSwitch:
-      if (is_bool) return value.cast<bool>() ? "on" : "off";
+      if (is_bool) return PyObject_IsTrue(value.ptr()) == 1 ? "on" : "off";
       expected = "bool";
       break;
     case OptionType::kInteger:
-      if (is_int) return py::str(value).cast<std::string>();
+      if (is_int) return py::str(py::int_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
       expected = "int";
       break;
     case OptionType::kReal:
-      if (is_int || py::isinstance<py::float_>(value)) return RealText(value.cast<double>());
+      if (is_float) return RealText(py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>());
       expected = "float";
       break;
     case OptionType::kChoice:

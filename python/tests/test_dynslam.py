@@ -391,3 +391,16 @@ def test_values_out_of_and_into_arrays():
         graph.with_values(points["id"][:1], moved[:1])
     with pytest.raises(ValueError, match="is not a vertex"):
         graph.with_values([123456789], moved[:1])
+
+
+def test_numpy_scalars_are_options_of_their_kind():
+    graph = dynslam.read_graph(graph_path("wc"))
+    report = dynslam.solve(graph, max_iterations=np.int64(3), remaining_chi2=np.float32(0.5),
+                           extrapolation=np.bool_(False))
+    solver = report.summary()["solver"]
+    assert solver["max_iterations"] == 3 and solver["remaining_chi2"] == 0.5
+    assert solver["extrapolation"] is False
+    with pytest.raises(TypeError, match="max_iterations: expected int, got float64"):
+        dynslam.solve(graph, max_iterations=np.float64(3))
+    with pytest.raises(TypeError, match="remaining_chi2: expected float, got bool_"):
+        dynslam.solve(graph, remaining_chi2=np.bool_(True))
