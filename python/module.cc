@@ -25,23 +25,14 @@
 #include "dynslam/simulate.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
+#include "arrays.h"
+#include "errors.h"
 #include "options.h"
 
 namespace py = pybind11;
 
 namespace dynslam::python {
 namespace {
-
-// A library Error on its way to Python's dynslam.Error.
-struct ErrorException {
-  Error error;
-};
-
-template <typename T>
-T Unwrap(Expected<T> expected) {
-  if (!expected.ok()) throw ErrorException{expected.error()};
-  return std::move(expected).value();
-}
 
 // A str or os.PathLike as a path (TypeError otherwise, as open() does).
 std::string PathText(const py::object& path) {
@@ -89,97 +80,6 @@ GroundTruth GroundTruthFromState(const py::tuple& state) {
 Graph GraphFromText(const std::string& text) {
   std::istringstream in(text);
   return Unwrap(ReadGraph(in, "<pickled graph>"));
-}
-
-Role ParseRole(const std::string& name) {
-  for (const Role role : kAllRoles) {
-    if (name == RoleName(role)) return role;
-  }
-  throw py::value_error("unknown role '" + name + "' (camera, static_point, dynamic_point, "
-                        "motion, object_pose, object_point)");
-}
-
-// A pose as [tx ty tz qx qy qz qw], the order of the CSV and TUM outputs.
-void CopyPose(const Pose& pose, double* row) {
-  for (int i = 0; i < 7; ++i) row[i] = pose.data[(i + 4) % 7];
-}
-
-// The vertices of one role: ids, labels and values as arrays ("value": n×7 poses, n×3 points).
-py::dict Vertices(const Graph& graph, const std::string& role_name) {
-  const Role role = ParseRole(role_name);
-  std::vector<const Vertex*> selected;
-  std::vector<int64_t> ids;
-  for (const auto& [id, vertex] : graph.vertices) {
-    if (vertex.label.role != role) continue;
-    selected.push_back(&vertex);
-    ids.push_back(id);
-  }
-  const py::ssize_t n = static_cast<py::ssize_t>(selected.size());
-  const bool points = role == Role::kStaticPoint || role == Role::kDynamicPoint ||
-                      role == Role::kObjectPoint;
-  py::array_t<double> values({n, py::ssize_t{points ? 3 : 7}});
-  py::array_t<int64_t> object(n), frame(n), tracklet(n);
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const Vertex& v = *selected[i];
-    double* row = values.mutable_data(i, 0);
-    if (points) {
-      for (int k = 0; k < 3; ++k) row[k] = v.value[k];
-    } else {
-      CopyPose(v.pose(), row);
-    }
-    object.mutable_at(i) = v.label.object;
-    frame.mutable_at(i) = v.label.frame;
-    tracklet.mutable_at(i) = v.label.tracklet;
-  }
-  py::dict out;
-  out["id"] = py::array_t<int64_t>(n, ids.data());
-  out["object"] = object;
-  out["frame"] = frame;
-  out["tracklet"] = tracklet;
-  out["value"] = values;
-  return out;
-}
-
-// A copy of `graph` with the values of the vertices `ids` replaced by the rows of `values`
-// (n×7 poses [tx ty tz qx qy qz qw], quaternions normalised, or n×3 points): the inverse of
-// Vertices(), for initial values computed with NumPy.
-Graph WithValues(const Graph& graph,
-                 const py::array_t<int64_t, py::array::c_style | py::array::forcecast>& ids,
-                 const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
-  if (ids.ndim() != 1 || values.ndim() != 2 || values.shape(0) != ids.shape(0) ||
-      (values.shape(1) != 7 && values.shape(1) != 3)) {
-    throw py::value_error("values: one row per id, 7 columns (poses) or 3 (points)");
-  }
-  const bool poses = values.shape(1) == 7;
-  Graph out = graph;
-  for (py::ssize_t i = 0; i < ids.shape(0); ++i) {
-    auto it = out.vertices.find(ids.at(i));
-    if (it == out.vertices.end()) {
-      throw py::value_error("id " + std::to_string(ids.at(i)) + " is not a vertex of the graph");
-    }
-    if ((it->second.type == VertexType::kPose) != poses) {
-      throw py::value_error("vertex " + std::to_string(ids.at(i)) + " is a " +
-                            (poses ? "point: give 3 columns" : "pose: give 7 columns"));
-    }
-    const double* row = values.data(i, 0);
-    for (py::ssize_t k = 0; k < values.shape(1); ++k) {
-      if (!std::isfinite(row[k])) {
-        throw py::value_error("vertex " + std::to_string(ids.at(i)) + ": a value is not finite");
-      }
-    }
-    if (!poses) {
-      it->second.point() = Eigen::Vector3d(row[0], row[1], row[2]);
-      continue;
-    }
-    const Eigen::Quaterniond q(row[6], row[3], row[4], row[5]);  // w, x, y, z
-    if (!(q.norm() > 1e-12)) {
-      throw py::value_error("vertex " + std::to_string(ids.at(i)) + ": a zero quaternion");
-    }
-    const bool unit = std::abs(q.norm() - 1) < 1e-15;  // as vertices() gave it: exactly
-    it->second.set_pose(Pose::FromRotationTranslation(unit ? q : q.normalized(),
-                                                      Eigen::Vector3d(row[0], row[1], row[2])));
-  }
-  return out;
 }
 
 py::dict EdgesByKind(const Graph& graph) {
@@ -401,8 +301,24 @@ void DefineTypes(py::module_& m) {
            "a copy with the values of vertices `ids` replaced by the rows of `values` (n×7 poses "
            "[tx ty tz qx qy qz qw], quaternions normalised, or n×3 points), as vertices() gives them")
       .def("vertices", Vertices, py::arg("role"),
-           "ids, object, frame, tracklet (int64 arrays) and value (n×7 poses [tx ty tz qx qy qz "
-           "qw] or n×3 points) of the vertices with this role")
+           "id, object, frame, tracklet, embedded (int64 arrays; -1 where the role has no such "
+           "label) and value (n×7 poses [tx ty tz qx qy qz qw] or n×3 points) of the vertices "
+           "with this role")
+      .def("edges", Edges, py::arg("tag"),
+           "the edges with this tag (e.g. 'EDGE_SE3:QUAT'), one array per field as the file "
+           "lists them: vertex ids and integers (int64), flags (bool), measurement (n×7 poses "
+           "[tx ty tz qx qy qz qw] or n×3) and information (n×6×6 in the file's order, "
+           "translation first, or n×3×3)")
+      .def("arrays", Arrays,
+           "the whole graph as arrays: {'vertices': {role: columns}, 'edges': {tag: columns}, "
+           "'formulation': str or None}; Graph.from_arrays(**graph.arrays()) is the same graph")
+      .def_static("from_arrays", FromArrays, py::arg("vertices"), py::arg("edges"),
+                  py::arg("formulation") = py::none(),
+                  "a graph from arrays as arrays() gives them. vertices: {role: {'id', 'value', "
+                  "and the role's label fields}}, or {'pose': …, 'point': …} for unlabelled "
+                  "vertices whose roles are inferred from the edges (SPEC §1.4); edges: {tag: "
+                  "{field: array}} as edges() gives them. The rows are checked as a graph file's "
+                  "lines are (SPEC §1.6); a problem raises dynslam.Error naming the table and row")
       .def("__repr__", [](const Graph& g) {
         return "<dynslam.Graph " + (g.formulation ? *g.formulation + ", " : std::string()) +
                std::to_string(g.vertices.size()) + " vertices, " + std::to_string(g.NumEdges()) +

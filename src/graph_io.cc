@@ -27,10 +27,6 @@
 namespace dynslam {
 namespace {
 
-// SPEC §1.2: pose-edge information is stored translation-first in the file; tangent index i
-// comes from file index kG2oIndex[i].
-constexpr int kG2oIndex[6] = {3, 4, 5, 0, 1, 2};
-
 // One line being parsed: its fields after the tag, and errors that name file, line and tag.
 class LineParser {
  public:
@@ -195,7 +191,9 @@ class LineParser {
       return true;
     }
     for (int r = 0; r < 6; ++r) {
-      for (int c = 0; c < 6; ++c) (*information)(r, c) = file_order(kG2oIndex[r], kG2oIndex[c]);
+      for (int c = 0; c < 6; ++c) {
+        (*information)(r, c) = file_order(kFileIndexOfTangent[r], kFileIndexOfTangent[c]);
+      }
     }
     return true;
   }
@@ -552,7 +550,7 @@ class Writer {
   // Tangent order back to the file's g2o order (SPEC §1.2).
   void Upper6(const Matrix6d& tangent) {
     int file_to_tangent[6];
-    for (int i = 0; i < 6; ++i) file_to_tangent[kG2oIndex[i]] = i;
+    for (int i = 0; i < 6; ++i) file_to_tangent[kFileIndexOfTangent[i]] = i;
     for (int r = 0; r < 6; ++r) {
       for (int c = r; c < 6; ++c) Number(tangent(file_to_tangent[r], file_to_tangent[c]));
     }

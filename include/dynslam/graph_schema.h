@@ -23,6 +23,11 @@
 
 namespace dynslam {
 
+// SPEC §1.2: a pose edge's 6×6 information is written translation first [ρ; ω] in the file and
+// held in tangent order [ω; ρ] in memory; tangent index i is file index kFileIndexOfTangent[i]
+// (the permutation is its own inverse).
+inline constexpr int kFileIndexOfTangent[6] = {3, 4, 5, 0, 1, 2};
+
 using VertexId = int64_t;  // SPEC §1.1: non-negative, below 2^63, one namespace
 
 enum class VertexType { kPose, kPoint };

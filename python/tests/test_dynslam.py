@@ -404,3 +404,106 @@ def test_numpy_scalars_are_options_of_their_kind():
         dynslam.solve(graph, max_iterations=np.float64(3))
     with pytest.raises(TypeError, match="remaining_chi2: expected float, got bool_"):
         dynslam.solve(graph, remaining_chi2=np.bool_(True))
+
+
+def file_edges(path, tag):
+    """The edges of `tag` as the file writes them: rows of numbers after the tag (a reader
+    independent of the module, for checking its arrays)."""
+    with open(path) as f:
+        return [[float(x) for x in line.split()[1:]] for line in f if line.split()[:1] == [tag]]
+
+
+def upper_triangle(matrix):
+    return [matrix[r][c] for r in range(len(matrix)) for c in range(r, len(matrix))]
+
+
+def test_edges_as_arrays_in_the_files_order():
+    """edges(tag) gives each field of the tag as a column, measurements and information in the
+    file's order (g2o: translation first), as a text reader of the file finds them."""
+    path = os.path.join(SCENE, "frontend.g2o")
+    graph = dynslam.read_graph(path)
+    odometry = graph.edges("EDGE_SE3:QUAT")
+    rows = file_edges(path, "EDGE_SE3:QUAT")
+    assert sorted(odometry) == ["a", "b", "information", "measurement"]
+    assert odometry["information"].shape == (len(rows), 6, 6)
+    assert np.diag(odometry["information"][0]).tolist() == [2500] * 3 + [250000] * 3
+    for i, row in enumerate(rows):
+        assert [odometry["a"][i], odometry["b"][i]] == row[:2]
+        assert odometry["measurement"][i].tolist() == row[2:9]
+        assert upper_triangle(odometry["information"][i]) == row[9:]
+    tracks = graph.edges("EDGE_SE3_TRACKXYZ")
+    assert sorted(tracks) == ["information", "is_dynamic", "measurement", "point", "pose"]
+    assert tracks["is_dynamic"].dtype == np.bool_ and tracks["is_dynamic"].any()
+    assert tracks["information"].shape[1:] == (3, 3)
+    with pytest.raises(ValueError, match="unknown edge tag 'EDGE_NOPE'.*EDGE_SE3_MOTION"):
+        graph.edges("EDGE_NOPE")
+
+
+@pytest.mark.parametrize("name", ["frontend", "wc", "oc_b"])
+def test_graph_from_its_arrays_is_the_same_graph(name, tmp_path):
+    """Graph.from_arrays(**graph.arrays()) writes the same file, byte for byte."""
+    path = os.path.join(SCENE, "frontend.g2o") if name == "frontend" else graph_path(name)
+    graph = dynslam.read_graph(path)
+    arrays = graph.arrays()
+    assert set(arrays) == {"vertices", "edges", "formulation"}
+    again = dynslam.Graph.from_arrays(**arrays)
+    dynslam.write_graph(graph, tmp_path / "a.g2o")
+    dynslam.write_graph(again, tmp_path / "b.g2o")
+    assert (tmp_path / "a.g2o").read_bytes() == (tmp_path / "b.g2o").read_bytes()
+
+
+def test_a_pose_graph_built_from_arrays_solves():
+    """Three cameras, a prior and two odometry edges from NumPy: the file the graph writes has
+    the information in g2o's order, and the solve moves the cameras onto the measurements."""
+    identity = np.array([0, 0, 0, 0, 0, 0, 1.0])
+    step = np.array([1.0, 0, 0, 0, 0, 0, 1])
+    information = np.diag([1.0, 2, 3, 4, 5, 6])  # file order: translation, then rotation
+    graph = dynslam.Graph.from_arrays(
+        vertices={"camera": {"id": [0, 1, 2], "frame": [0, 1, 2],
+                             "value": [identity, identity, identity]}},
+        edges={"EDGE_SE3_PRIOR": {"id": [0], "measurement": [identity],
+                                  "information": [information]},
+               "EDGE_SE3:QUAT": {"a": [0, 1], "b": [1, 2], "measurement": [step, step],
+                                 "information": [information, information]}})
+    assert graph.edges_by_kind["odometry"] == 2 and graph.edges_by_kind["prior"] == 1
+    assert upper_triangle(graph.edges("EDGE_SE3:QUAT")["information"][0]) == \
+        upper_triangle(information.tolist())
+    report = dynslam.solve(graph)
+    assert report.final_cost < 1e-20
+    assert np.allclose(report.graph.vertices("camera")["value"][:, 0], [0, 1, 2], atol=1e-9)
+
+
+def test_bad_arrays_name_the_table_row_and_column():
+    pose = [0, 0, 0, 0, 0, 0, 1.0]
+    cameras = {"camera": {"id": [0, 1], "frame": [0, 1], "value": [pose, pose]}}
+    odometry = {"a": [0], "b": [7], "measurement": [pose], "information": [np.eye(6)]}
+    with pytest.raises(dynslam.Error, match=r"edges\['EDGE_SE3:QUAT'\] row 0: .*7"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": odometry})
+    with pytest.raises(ValueError, match=r"edges\['EDGE_SE3:QUAT'\]: no column 'information'"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {
+            k: v for k, v in odometry.items() if k != "information"}})
+    with pytest.raises(ValueError, match=r"edges\['EDGE_SE3:QUAT'\]: unknown column 'c'"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {**odometry, "c": [1]}})
+    with pytest.raises(ValueError, match=r"edges\['EDGE_SE3:QUAT'\]\['b'\]: 2 rows, 'a' has 1"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {**odometry, "b": [1, 1]}})
+    with pytest.raises(ValueError, match=r"\['information'\]: shape \(1, 3, 3\), wanted \(1, 6, 6\)"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {
+            **odometry, "information": [np.eye(3)]}})
+    asymmetric = np.eye(6)
+    asymmetric[0, 1] = 1
+    with pytest.raises(ValueError, match=r"\['information'\] row 0 is not symmetric"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {
+            **odometry, "b": [1], "information": [asymmetric]}})
+    with pytest.raises(TypeError, match=r"\['a'\]: integers wanted, not float64"):
+        dynslam.Graph.from_arrays(vertices=cameras, edges={"EDGE_SE3:QUAT": {
+            **odometry, "a": [0.5]}})
+    with pytest.raises(ValueError, match=r"unknown vertex table 'cameras'.*camera"):
+        dynslam.Graph.from_arrays(vertices={"cameras": cameras["camera"]}, edges={})
+    with pytest.raises(ValueError, match=r"vertices\['camera'\]: no column 'frame'"):
+        dynslam.Graph.from_arrays(vertices={"camera": {"id": [0], "value": [pose]}}, edges={})
+    with pytest.raises(ValueError, match=r"vertices\['camera'\]\['object'\]: a camera has no "):
+        dynslam.Graph.from_arrays(vertices={"camera": {**cameras["camera"], "object": [3, 3]}},
+                                  edges={})
+    with pytest.raises(dynslam.Error, match=r"vertices\['camera'\] row 1: .*not finite|nan"):
+        dynslam.Graph.from_arrays(vertices={"camera": {**cameras["camera"],
+                                                       "value": [pose, [np.nan] * 7]}}, edges={})
