@@ -9,7 +9,7 @@
 //
 // Prints one CSV row per (matrix, method): graph, matrix, method, n, nnz_lower, nnz_factor,
 // seconds (the median of N factorisations). CHOLMOD runs with one thread, its regions inline
-// as in the `dynslam` command (apps/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
+// as in the `dynslam` command (process/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -242,7 +242,7 @@ fi
 check "compare --covariance with --resume" 2 "$dynslam" compare "$data/synthetic/frontend.g2o" --out "$work/cmp_cov" --covariance all --resume
 expect_output "the conflict is named" "covariance and --resume"
 
-# The huge-page heap (apps/huge_page_heap.h) changes where blocks live, never what is computed.
+# The huge-page heap (process/huge_page_heap.h) changes where blocks live, never what is computed.
 check "solve with the huge-page heap" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_on" --max-iterations 5
 check "solve without it" 0 env DYNSLAM_HUGE_PAGES=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/heap_off" --max-iterations 5
 if cmp -s "$work/heap_on/solution.g2o" "$work/heap_off/solution.g2o"; then
@@ -251,7 +251,7 @@ else
   failed=$((failed + 1)); echo "FAIL: DYNSLAM_HUGE_PAGES=0 changed the solution"
 fi
 
-# So do the inline OpenMP regions (apps/inline_openmp_regions.h): CHOLMOD computes the same.
+# So do the inline OpenMP regions (process/inline_openmp_regions.h): CHOLMOD computes the same.
 check "solve with libgomp's regions" 0 env DYNSLAM_INLINE_OPENMP=0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/regions_libgomp" --max-iterations 5
 if cmp -s "$work/heap_on/solution.g2o" "$work/regions_libgomp/solution.g2o"; then
   passed=$((passed + 1))

@@ -1,4 +1,4 @@
-// The `dynslam` command's huge-page heap (apps/huge_page_heap.h). It changes malloc for the whole
+// The `dynslam` command's huge-page heap (process/huge_page_heap.h). It changes malloc for the whole
 // process, so each case runs it in a child process (a death test's fork) and reports by exit code.
 #include "huge_page_heap.h"
 

@@ -1,4 +1,4 @@
-// The command's inline OpenMP regions (apps/inline_openmp_regions.h). This executable links the
+// The command's inline OpenMP regions (process/inline_openmp_regions.h). This executable links the
 // same GOMP_parallel as `dynslam`, so its own `#pragma omp parallel` regions and CHOLMOD's go
 // through it. omp_get_level() inside a region tells how it ran: 0 inline, 1 in a libgomp team.
 #include "inline_openmp_regions.h"

@@ -17,8 +17,8 @@
 // (vm.overcommit_memory = 2, where a reserve would be charged); when the heap cannot grow
 // (e.g. ulimit -d) or the kernel refuses the advice, malloc gets its settings back (glibc's
 // dynamic mmap threshold alone stays off once mallopt has been called).
-#ifndef DYNSLAM_APPS_HUGE_PAGE_HEAP_H_
-#define DYNSLAM_APPS_HUGE_PAGE_HEAP_H_
+#ifndef DYNSLAM_PROCESS_HUGE_PAGE_HEAP_H_
+#define DYNSLAM_PROCESS_HUGE_PAGE_HEAP_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -51,4 +51,4 @@ HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes = 0);
 
 }  // namespace dynslam
 
-#endif  // DYNSLAM_APPS_HUGE_PAGE_HEAP_H_
+#endif  // DYNSLAM_PROCESS_HUGE_PAGE_HEAP_H_

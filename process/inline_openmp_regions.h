@@ -21,8 +21,8 @@
 // It replaces a symbol of the OpenMP runtime for the whole process, which a library must not do to
 // its users' programs: a program or Python session that links the library keeps libgomp's regions.
 // DYNSLAM_INLINE_OPENMP=0 in the environment turns it off.
-#ifndef DYNSLAM_APPS_INLINE_OPENMP_REGIONS_H_
-#define DYNSLAM_APPS_INLINE_OPENMP_REGIONS_H_
+#ifndef DYNSLAM_PROCESS_INLINE_OPENMP_REGIONS_H_
+#define DYNSLAM_PROCESS_INLINE_OPENMP_REGIONS_H_
 
 #include <cstdint>
 
@@ -39,4 +39,4 @@ uint64_t InlinedOpenMpRegions();
 
 }  // namespace dynslam
 
-#endif  // DYNSLAM_APPS_INLINE_OPENMP_REGIONS_H_
+#endif  // DYNSLAM_PROCESS_INLINE_OPENMP_REGIONS_H_
