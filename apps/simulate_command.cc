@@ -17,34 +17,6 @@
 namespace dynslam::cli {
 namespace {
 
-// "A:B", "A:" or ":B" → [first, last); last −1 means the end.
-bool ParseFrames(const std::string& text, int64_t* first, int64_t* last) {
-  const size_t colon = text.find(':');
-  if (colon == std::string::npos) return false;
-  auto number = [](const std::string& s, int64_t* value) {
-    if (s.empty() || s.size() > 12 || s.find_first_not_of("0123456789") != std::string::npos) {
-      return false;
-    }
-    *value = std::stoll(s);
-    return true;
-  };
-  const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
-  *first = 0;
-  *last = -1;
-  if (!a.empty() && !number(a, first)) return false;
-  if (!b.empty() && !number(b, last)) return false;
-  return *last < 0 || *last > *first;
-}
-
-std::vector<std::string> SplitComma(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 // The command line without --out and --kitti (paths would make the files depend on where they
 // were written).
 std::string ArgumentsLine(int argc, char** argv) {
@@ -64,14 +36,10 @@ std::string ArgumentsLine(int argc, char** argv) {
 }  // namespace
 
 int RunSimulate(int argc, char** argv) {
-  SimulateOptions o;
-  std::string kitti_dir = EmbeddedKittiDir(), sequence, frames, out_prefix;
-  std::string object_types = "Car,Van,Truck,Tram,Cyclist,Misc";
+  std::string kitti_dir = EmbeddedKittiDir(), sequence, out_prefix;
   std::string density = "default";
-  int64_t seed = 0;
-  bool no_noise = false;
   ArgParser parser(
-      "dynslam simulate --kitti DIR --seq NNNN [--frames A:B] [--seed N] [options] --out PREFIX\n"
+      "dynslam simulate --seq NNNN [--frames A:B] [--seed N] [options] --out PREFIX\n"
       "       dynslam simulate --synthetic [--frames 0:N] [--seed N] [options] --out PREFIX",
       "Simulates a visual front end on real KITTI Tracking motion (oxts, label_02, calib) or on a\n"
       "small synthetic scene, and writes PREFIX.g2o (a front-end file: SPEC §1.2 edges and §1.4\n"
@@ -86,59 +54,12 @@ int RunSimulate(int argc, char** argv) {
                    "DIR");
   parser.AddString("seq", &sequence, "sequence number, e.g. 0003 (required unless --synthetic)",
                    "NNNN");
-  parser.AddString("frames", &frames, "frame range A:B, B exclusive; A: and :B allowed; all frames when absent", "A:B");
-  parser.AddInt("seed", &seed, "random seed", 0, INT64_MAX);
-  parser.AddFlag("synthetic", &o.synthetic, "a tiny hand-made scene, no KITTI data");
-  parser.AddInt("synthetic-frames", &o.synthetic_frames, "frames of the synthetic scene", 2,
-                100000);
-  parser.Group("noise");
-  parser.AddFlag("no-noise", &no_noise,
-                 "exact measurements and initial values (informations unchanged)");
-  parser.AddDouble("pixel-sigma", &o.pixel_sigma, "image noise, px", 1e-9, 1e6);
-  parser.AddDouble("disparity-sigma", &o.disparity_sigma, "disparity noise, px", 1e-9, 1e6);
-  parser.AddDouble("point-sigma-floor", &o.point_sigma_floor,
-                   "m, added in quadrature to each axis of a point's noise", 0, 1e6);
-  parser.AddDouble("odometry-rotation-sigma", &o.odometry_rotation_sigma, "rad per frame", 1e-12,
-                   10);
-  parser.AddDouble("odometry-translation-sigma", &o.odometry_translation_sigma, "m per frame",
-                   1e-12, 1e6);
-  parser.AddDouble("motion-init-rotation-sigma", &o.motion_init_rotation_sigma,
-                   "rad, noise of initial motions", 1e-12, 10);
-  parser.AddDouble("motion-init-translation-sigma", &o.motion_init_translation_sigma,
-                   "m, noise of initial motions", 1e-12, 1e6);
-  parser.AddDouble("motion-sigma", &o.motion_sigma, "m, ternary motion edge (isotropic)", 1e-12,
-                   1e6);
-  parser.AddDouble("smoothing-rotation-sigma", &o.smoothing_rotation_sigma, "rad, smoothing edge",
-                   1e-12, 10);
-  parser.AddDouble("smoothing-translation-sigma", &o.smoothing_translation_sigma,
-                   "m, smoothing edge", 1e-12, 1e6);
-  parser.AddDouble("prior-sigma", &o.prior_sigma, "rad and m, prior on the first camera", 1e-12,
-                   1e6);
-  parser.AddDouble("outlier-fraction", &o.outlier_fraction,
-                   "fraction of point observations with a gross error", 0, 1);
-  parser.AddDouble("outlier-min", &o.outlier_min, "m, smallest gross error", 0, 1e6);
-  parser.AddDouble("outlier-max", &o.outlier_max, "m, largest gross error", 0, 1e6);
+  TableFlags<SimulateOptions> simulate_flags(&parser, SimulateOptionTable());
   parser.Group("density and visibility");
   parser.AddChoice("density", &density, {"default", "paper"},
                    "paper: as many tracked points as the paper's front end, per sequence, so that "
                    "whole sequences build to its Table I variable counts (docs/SIMULATOR.md); "
                    "sets --static-points and --dynamic-points");
-  parser.AddInt("static-points", &o.static_points_per_frame,
-                "tracked static points kept per frame", 0, 1000000);
-  parser.AddInt("dynamic-points", &o.dynamic_points_per_object,
-                "tracked points kept per visible moving object", 0, 1000000);
-  parser.AddDouble("static-break", &o.static_break_probability,
-                   "probability per frame that a static track ends", 0, 1);
-  parser.AddDouble("dynamic-break", &o.dynamic_break_probability,
-                   "probability per frame that a dynamic track ends", 0, 1);
-  parser.AddDouble("min-depth", &o.min_depth, "m, nearest visible depth", 1e-3, 1e6);
-  parser.AddDouble("max-depth", &o.max_depth, "m, farthest visible depth", 1e-3, 1e6);
-  parser.AddDouble("moving-min-extent", &o.moving_min_extent,
-                   "m, an object is moving when its centre spans at least this ...", 0, 1e6);
-  parser.AddDouble("moving-min-speed", &o.moving_min_speed,
-                   "m/s, ... and reaches this speed over 1 s somewhere", 0, 1e6);
-  parser.AddString("object-types", &object_types, "label types simulated as rigid objects",
-                   "LIST");
   parser.Group("output");
   parser.AddString("out", &out_prefix, "writes PREFIX.g2o and PREFIX.gt.txt (required)",
                    "PREFIX");
@@ -147,11 +68,10 @@ int RunSimulate(int argc, char** argv) {
     std::cerr << "error: " << message << "\n";
     return kExitBadInput;
   };
+  SimulateOptions o;
+  if (ReportedProblem(simulate_flags.Finish(&o))) return kExitBadInput;
   if (out_prefix.empty()) return usage_error("--out PREFIX is required");
   if (!o.synthetic && sequence.empty()) return usage_error("--seq NNNN is required (or --synthetic)");
-  if (!frames.empty() && !ParseFrames(frames, &o.first_frame, &o.last_frame)) {
-    return usage_error("--frames '" + frames + "' is not A:B with A < B");
-  }
   if (!sequence.empty() && sequence.find_first_not_of("0123456789") == std::string::npos &&
       sequence.size() < 4) {
     sequence = std::string(4 - sequence.size(), '0') + sequence;  // 3 → 0003
@@ -164,9 +84,6 @@ int RunSimulate(int argc, char** argv) {
       return usage_error("--density paper sets --static-points and --dynamic-points: give one");
     }
   }
-  o.seed = static_cast<uint64_t>(seed);
-  o.noise = !no_noise;
-  o.object_types = SplitComma(object_types);
 
   const auto start = std::chrono::steady_clock::now();
   Scene scene;

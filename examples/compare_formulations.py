@@ -27,7 +27,7 @@ def main():
     parser.add_argument("--out", default="convergence.png")
     args = parser.parse_args()
 
-    frontend, gt = dynslam.simulate(args.kitti, args.sequence, last_frame=args.frames,
+    frontend, gt = dynslam.simulate(args.kitti, args.sequence, frames=f"0:{args.frames}",
                                     seed=args.seed)
     results = dynslam.compare(frontend, gt)
     print(f"{'formulation':12} {'variables':>9} {'steps':>5} {'final cost':>14} "

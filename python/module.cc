@@ -257,12 +257,10 @@ GroundTruth AsGroundTruth(const py::object& gt) {
 }
 
 std::pair<Graph, GroundTruth> SimulateScene(const py::object& kitti_dir,
-                                            const py::object& sequence, bool synthetic,
-                                            const py::kwargs& kwargs) {
-  SimulateOptions options = ToSimulateOptions(kwargs);
-  options.synthetic = synthetic;
+                                            const py::object& sequence, const py::kwargs& kwargs) {
+  const SimulateOptions options = ToSimulateOptions(kwargs);
   Scene scene;
-  if (synthetic) {
+  if (options.synthetic) {
     scene = MakeSyntheticScene(options);
   } else {
     if (kitti_dir.is_none() || sequence.is_none()) {
@@ -436,10 +434,14 @@ void DefineFunctions(py::module_& m) {
   m.def("metrics", [](const Graph& graph, const py::object& gt) {
     return ParseJsonText(MetricsJson(ComputeMetrics(graph, AsGroundTruth(gt))));
   }, py::arg("graph"), py::arg("gt"), "SPEC §5 metrics as a dict shaped like metrics.json");
+  static const std::string simulate_doc =
+      "simulate(kitti_dir=None, sequence=None, **options) -> (Graph, GroundTruth)\n\n"
+      "A simulated front end on KITTI sequence `sequence` (from `kitti_dir`, by default the "
+      "embedded data) or, with synthetic=True, on the synthetic scene, and its ground truth "
+      "(docs/SIMULATOR.md).\n\nOptions (keyword arguments, as `dynslam simulate`'s flags):\n" +
+      SimulateOptionsDoc();
   m.def("simulate", SimulateScene, py::arg("kitti_dir") = py::none(),
-        py::arg("sequence") = py::none(), py::arg("synthetic") = false,
-        "a simulated front end and its ground truth (docs/SIMULATOR.md); options are "
-        "SimulateOptions's fields");
+        py::arg("sequence") = py::none(), simulate_doc.c_str());
 }
 
 }  // namespace

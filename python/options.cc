@@ -1,7 +1,5 @@
 #include "options.h"
 
-#include <functional>
-#include <map>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -11,48 +9,6 @@ namespace py = pybind11;
 
 namespace dynslam::python {
 namespace {
-
-template <typename T>
-const char* TypeName() {
-  if constexpr (std::is_same_v<T, bool>) return "bool";
-  if constexpr (std::is_integral_v<T>) return "int";
-  return "float";
-}
-
-template <typename Options>
-using Setters = std::map<std::string, std::function<void(Options*, py::handle)>>;
-
-// A plain field: the Python value cast to the field's type (TypeError when it cannot be).
-template <typename Options, typename T>
-std::pair<const std::string, std::function<void(Options*, py::handle)>> Plain(
-    const char* name, T Options::*member) {
-  return {name, [name, member](Options* o, py::handle value) {
-            // bool from a bool only: pybind11 would take 0 and 1, and a float from an int.
-            const bool wrong_bool = std::is_same_v<T, bool> && !py::isinstance<py::bool_>(value);
-            try {
-              if (!wrong_bool) {
-                o->*member = value.cast<T>();
-                return;
-              }
-            } catch (const py::cast_error&) {
-            }
-            throw py::type_error(std::string(name) + ": expected " + TypeName<T>() + ", got " +
-                                 py::str(py::type::of(value).attr("__name__")).cast<std::string>() +
-                                 " " + py::repr(value).cast<std::string>());
-          }};
-}
-
-template <typename Options>
-Options Apply(const Setters<Options>& setters, const py::kwargs& kwargs) {
-  Options options;
-  for (const auto& [key, value] : kwargs) {
-    const std::string name = py::cast<std::string>(key);
-    auto it = setters.find(name);
-    if (it == setters.end()) throw py::type_error("unknown option '" + name + "'");
-    it->second(&options, value);
-  }
-  return options;
-}
 
 // numpy.bool_, or an empty handle without NumPy; kept for the life of the process (released, so
 // that nothing is destroyed after the interpreter).
@@ -165,28 +121,9 @@ std::string SolverOptionsDoc() { return TableDoc(SolverOptionTable()); }
 std::string BuildOptionsDoc() { return TableDoc(BuildOptionTable()); }
 
 SimulateOptions ToSimulateOptions(const py::kwargs& kwargs) {
-  using O = SimulateOptions;
-  static const Setters<O> setters = {
-      Plain("first_frame", &O::first_frame),
-      Plain("last_frame", &O::last_frame),
-      Plain("seed", &O::seed),
-      Plain("synthetic_frames", &O::synthetic_frames),
-      Plain("noise", &O::noise),
-      Plain("pixel_sigma", &O::pixel_sigma),
-      Plain("disparity_sigma", &O::disparity_sigma),
-      Plain("point_sigma_floor", &O::point_sigma_floor),
-      Plain("odometry_rotation_sigma", &O::odometry_rotation_sigma),
-      Plain("odometry_translation_sigma", &O::odometry_translation_sigma),
-      Plain("motion_init_rotation_sigma", &O::motion_init_rotation_sigma),
-      Plain("motion_init_translation_sigma", &O::motion_init_translation_sigma),
-      Plain("motion_sigma", &O::motion_sigma),
-      Plain("smoothing_rotation_sigma", &O::smoothing_rotation_sigma),
-      Plain("smoothing_translation_sigma", &O::smoothing_translation_sigma),
-      Plain("outlier_fraction", &O::outlier_fraction),
-      Plain("static_points_per_frame", &O::static_points_per_frame),
-      Plain("dynamic_points_per_object", &O::dynamic_points_per_object),
-  };
-  return Apply(setters, kwargs);
+  return FromTable(SimulateOptionTable(), kwargs);
 }
+
+std::string SimulateOptionsDoc() { return TableDoc(SimulateOptionTable()); }
 
 }  // namespace dynslam::python

@@ -1,6 +1,6 @@
-// Keyword arguments → the library's option structs. Solver and build options come from their
-// option tables (options.h): the keyword is the option's name, its value the Python type of the
-// option (bool for a switch, str for a choice). Simulation options: every field by its C++ name.
+// Keyword arguments → the library's option structs, from their option tables (options.h): the
+// keyword is the option's name, its value the Python type of the option (bool for a switch, str
+// for a choice).
 // An unknown name or a value of the wrong type raises TypeError, a bad value ValueError naming
 // the option.
 #ifndef DYNSLAM_PYTHON_OPTIONS_H_
@@ -23,6 +23,7 @@ SimulateOptions ToSimulateOptions(const pybind11::kwargs& options);
 // "    name (type, default value): help" per option, for docstrings.
 std::string SolverOptionsDoc();
 std::string BuildOptionsDoc();
+std::string SimulateOptionsDoc();
 
 }  // namespace dynslam::python
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "dynslam/formulation.h"
+#include "dynslam/simulate.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver_options.h"
 #include "src/json_io.h"
@@ -36,6 +37,7 @@ void ExpectOneSpellingEach(const OptionTable<Options>& table) {
 TEST(OptionsTest, EveryNameIsOneSnakeCaseSpelling) {
   ExpectOneSpellingEach(SolverOptionTable());
   ExpectOneSpellingEach(BuildOptionTable());
+  ExpectOneSpellingEach(SimulateOptionTable());
 }
 
 // Every option, written as text and read back, is the same value.
@@ -95,6 +97,43 @@ TEST(OptionsTest, AliasesAreEarlierSpellings) {
   EXPECT_FALSE(options.extrapolation);
   EXPECT_EQ(options.max_time, 5);
   EXPECT_TRUE(options.gauge_moves);
+}
+
+TEST(OptionsTest, SimulationFramesAreARangeWithBExclusive) {
+  const auto frames = [](const std::string& text) {
+    SimulateOptions options;
+    const std::optional<std::string> problem =
+        ApplyOptions(SimulateOptionTable(), {{"frames", text}}, Plain, &options);
+    return problem ? *problem
+                   : std::to_string(options.first_frame) + "," + std::to_string(options.last_frame);
+  };
+  EXPECT_EQ(frames("0:60"), "0,60");
+  EXPECT_EQ(frames("5:"), "5,-1");
+  EXPECT_EQ(frames(":30"), "0,30");
+  EXPECT_EQ(frames(":"), "0,-1");
+  for (const std::string bad : {"30:5", "5:5", "60", "a:b", "-1:5", "0:-1"}) {
+    EXPECT_EQ(frames(bad), "frames: '" + bad + "' is not A:B with A < B (A: and :B allowed)");
+  }
+}
+
+TEST(OptionsTest, SimulationOptionsReadBackAndKeepTheirEarlierSpellings) {
+  SimulateOptions changed;
+  ASSERT_EQ(ApplyOptions(SimulateOptionTable(),
+                         {{"frames", "3:40"}, {"static_points_per_frame", "80"},
+                          {"dynamic-break", "0.25"}, {"object_types", "Car,Van"}, {"noise", "off"}},
+                         Plain, &changed),
+            std::nullopt);
+  EXPECT_EQ(changed.static_points_per_frame, 80);
+  EXPECT_EQ(changed.dynamic_break_probability, 0.25);
+  EXPECT_EQ(changed.object_types, (std::vector<std::string>{"Car", "Van"}));
+  EXPECT_FALSE(changed.noise);
+  for (const SimulateOptions& options : {SimulateOptions{}, changed}) {
+    for (const Option<SimulateOptions>& option : SimulateOptionTable()) {
+      SimulateOptions read;
+      ASSERT_EQ(option.set(option.get(options), &read), std::nullopt) << option.name;
+      EXPECT_EQ(option.get(read), option.get(options)) << option.name;
+    }
+  }
 }
 
 TEST(OptionsTest, APresetRefusesAnOptionThatUndoesIt) {

@@ -20,7 +20,7 @@ import sys
 import dynslam
 assert dynslam.__file__.startswith(sys.prefix), dynslam.__file__  # the venv's copy
 assert os.path.isdir(os.path.join(dynslam.embedded_kitti_dir(), "label_02"))
-frontend, gt = dynslam.simulate(sequence="0003", last_frame=5, seed=1)
+frontend, gt = dynslam.simulate(sequence="0003", frames="0:5", seed=1)
 assert dynslam.solve(dynslam.build(frontend, "wc", gt), max_iterations=3).steps >= 1
 PY
 "$work/v/bin/dynslam" --version | grep -q "^dynslam $(cat "$work/version")"

@@ -37,6 +37,7 @@
 #include "dynslam/graph.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/kitti.h"
+#include "dynslam/options.h"
 #include "dynslam/pose.h"
 #include "dynslam/status.h"
 
@@ -98,6 +99,11 @@ struct SimulateOptions {
   // (sequence 00 object 1 is a cyclist, 20 object 32 a Misc).
   std::vector<std::string> object_types = {"Car", "Van", "Truck", "Tram", "Cyclist", "Misc"};
 };
+
+// The option table of SimulateOptions (options.h): `dynslam simulate`'s flags and
+// `dynslam.simulate`'s keywords. Groups "scene", "noise", "density and visibility". `frames`
+// ("A:B", B exclusive; "A:" and ":B" too) sets first_frame and last_frame.
+const OptionTable<SimulateOptions>& SimulateOptionTable();
 
 // Pinhole of the image the front end sees (KITTI: P2, colour camera 2) and the stereo baseline.
 struct CameraModel {

@@ -1,7 +1,7 @@
 """dynslam: Dynamic SLAM back ends on Ceres Solver, from Python (docs/PYTHON.md).
 
     import dynslam
-    frontend, gt = dynslam.simulate(sequence="0003", last_frame=60, seed=1)
+    frontend, gt = dynslam.simulate(sequence="0003", frames="0:60", seed=1)
     graph = dynslam.build(frontend, "oc_b", gt)
     report = dynslam.solve(graph, max_iterations=100)
     print(report.final_cost, report.steps, dynslam.metrics(report.graph, gt)["object_motion"])
@@ -15,10 +15,10 @@ from ._dynslam import (FORMULATIONS, Error, Graph, GroundTruth, SolveReport, bui
                        metrics, read_graph, read_ground_truth, solve, write_graph)
 
 
-def simulate(kitti_dir=None, sequence=None, synthetic=False, **options):
-    if kitti_dir is None and sequence is not None and not synthetic:
+def simulate(kitti_dir=None, sequence=None, **options):
+    if kitti_dir is None and sequence is not None and not options.get("synthetic", False):
         kitti_dir = embedded_kitti_dir()
-    return _dynslam.simulate(kitti_dir, sequence, synthetic, **options)
+    return _dynslam.simulate(kitti_dir, sequence, **options)
 
 
 simulate.__doc__ = (_dynslam.simulate.__doc__ or "") + (

@@ -358,6 +358,15 @@ def test_docstrings_list_every_option():
     build_documented = {line.split()[0] for line in dynslam.build.__doc__.splitlines()
                         if line.startswith("    ") and "(" in line}
     assert {"object_init", "hybrid_smoothing_info", "kinematic_sigma"} <= build_documented
+    simulate_help = subprocess.run([os.environ["DYNSLAM_CLI"], "simulate", "--help"], check=True,
+                                   capture_output=True, text=True).stdout
+    simulate_flags = {line.split()[0][2:].replace("-", "_") for line in simulate_help.splitlines()
+                      if line.startswith("  --")}
+    simulate_documented = {line.split()[0] for line in dynslam.simulate.__doc__.splitlines()
+                           if line.startswith("    ") and "(" in line}
+    assert {"frames", "seed", "synthetic", "noise", "static_points"} <= simulate_documented
+    # every flag of `dynslam simulate` but the command's own (where to read and write, density)
+    assert simulate_flags - simulate_documented == {"help", "kitti", "seq", "density", "out"}
 
 
 def test_robust_kernels_as_text_reach_the_solver():
@@ -370,8 +379,12 @@ def test_simulate_finds_the_embedded_kitti_data_from_anywhere(tmp_path, monkeypa
     monkeypatch.chdir(tmp_path)
     monkeypatch.delenv("DYNSLAM_KITTI", raising=False)
     assert os.path.isdir(os.path.join(dynslam.embedded_kitti_dir(), "label_02"))
-    frontend, gt = dynslam.simulate(sequence="0003", last_frame=5, seed=1)
+    frontend, gt = dynslam.simulate(sequence="0003", frames="0:5", seed=1)
     assert gt.num_cameras == 5
+    with pytest.raises(ValueError, match="frames: '5:2' is not A:B"):
+        dynslam.simulate(sequence="0003", frames="5:2")
+    with pytest.raises(TypeError, match="unknown option 'last_frame'"):
+        dynslam.simulate(sequence="0003", last_frame=5)
 
 
 def test_values_out_of_and_into_arrays():
