@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""dynslam against GTSAM 4.2 at the paper's scale (issue 42), in one run on one machine.
+
+Simulates each sequence at the paper's density (`dynslam simulate --density paper`, fixed seed),
+builds every formulation, then for each graph runs, one after the other: GTSAM's `released`
+profile (`gtsam_ref`; hy: `gtsam_hy`), `dynslam solve` with its defaults, with `--tolerances
+gtsam`, with `--threads 1` (the sequences of --one-thread), and with `--tolerances tight` (the
+best known optimum: the lowest final cost of all runs). Without --gtsam it reports dynslam alone.
+
+    benchmarks/paper_scale.py --gtsam /work/gtsam/bin [--sequences 0003 0005 0020]
+        [--formulations wc oc_a …] [--out out/paper_scale]
+
+Writes OUT/runs.csv (every run: process wall time, peak resident memory, solve time, steps,
+final cost, time to GTSAM's final cost) and OUT/table.md, and prints the table:
+- GTSAM / dynslam to GTSAM's cost: GTSAM's solve time (its `time_s.total`) over dynslam's time
+  to its first accepted step at or below GTSAM's final cost · (1 + 1e-6) (preprocessing plus
+  the minimiser's time at that step, as benchmarks/gtsam_ratios.py measures it);
+- whole process: the wall time of each command, reading the file to writing the outputs;
+- χ² above the optimum: 2 × (final cost − the lowest final cost of the graph's runs), SPEC §1.5.
+"""
+import argparse
+import csv
+import datetime
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from gtsam_ratios import commit, machine  # noqa: E402
+
+FORMULATIONS = ["wc", "oc_a", "oc_b", "oc_c", "hy"]
+
+
+def run(command, out_dir):
+    """Runs `command` (writing into out_dir); returns (wall s, peak resident KiB, summary)."""
+    os.makedirs(out_dir, exist_ok=True)
+    start = time.perf_counter()
+    with open(os.path.join(out_dir, "stdout.txt"), "w") as log:
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(process.pid, 0)
+    wall = time.perf_counter() - start
+    if os.waitstatus_to_exitcode(status) != 0:
+        sys.exit(f"failed ({os.waitstatus_to_exitcode(status)}): {' '.join(command)}; "
+                 f"see {out_dir}/stdout.txt")
+    with open(os.path.join(out_dir, "summary.json")) as f:
+        return wall, usage.ru_maxrss, json.load(f)
+
+
+def time_to_cost(out_dir, summary, target):
+    """dynslam: preprocessing + minimiser time at the first accepted step at or below target."""
+    with open(os.path.join(out_dir, "convergence.csv")) as f:
+        for row in csv.DictReader(f):
+            if row["accepted"] == "1" and float(row["trial_cost"]) <= target:
+                return summary["time_s"]["preprocessing"] + float(row["time_s"])
+    return None
+
+
+def prepare(cli, sequence, seed, formulations, out):
+    """The front end of `sequence` at the paper's density and its built graphs."""
+    scene = out / sequence
+    scene.mkdir(parents=True, exist_ok=True)
+    prefix = scene / "frontend"
+    if not (scene / "frontend.gt.txt").exists():
+        subprocess.run([cli, "simulate", "--seq", sequence, "--density", "paper", "--seed",
+                        str(seed), "--out", str(prefix)], check=True, stdout=subprocess.DEVNULL)
+    graphs = {}
+    for f in formulations:
+        graphs[f] = scene / f"{f}.g2o"
+        if not graphs[f].exists():
+            subprocess.run([cli, "build", f"{prefix}.g2o", "--formulation", f, "--gt",
+                            f"{prefix}.gt.txt", "--out", str(graphs[f])], check=True,
+                           stdout=subprocess.DEVNULL)
+    return graphs
+
+
+def runs_of_graph(args, sequence, formulation, graph, out):
+    """Every run of one graph, in the order they ran."""
+    rows = []
+    target = None
+    if args.gtsam:
+        tool = os.path.join(args.gtsam, "gtsam_hy" if formulation == "hy" else "gtsam_ref")
+        extra = [] if formulation == "hy" else ["--no-stock-check"]
+        d = out / "gtsam_released"
+        wall, peak, s = run([tool, "solve", str(graph), "--profile", "released", "--out", str(d),
+                             *extra], str(d))
+        target = s["final_cost"] * (1 + 1e-6)
+        rows.append({"run": "gtsam_released", "wall_s": wall, "peak_kib": peak,
+                     "solve_s": s["time_s"]["total"], "steps": s["iterations"],
+                     "final_cost": s["final_cost"], "to_gtsam_cost_s": s["time_s"]["total"]})
+    runs = [("defaults", []), ("tolerances_gtsam", ["--tolerances", "gtsam"])]
+    if sequence in args.one_thread:
+        runs.append(("threads_1", ["--threads", "1"]))
+    if not args.no_tight:
+        runs.append(("tight", ["--tolerances", "tight"]))
+    for name, flags in runs:
+        d = out / name
+        wall, peak, s = run([args.dynslam, "solve", str(graph), "--out", str(d), *flags], str(d))
+        rows.append({"run": name, "wall_s": wall, "peak_kib": peak,
+                     "solve_s": s["time_s"]["total"], "steps": s["steps"],
+                     "final_cost": s["final_cost"], "variables": s["variables"]["total"],
+                     "to_gtsam_cost_s": time_to_cost(str(d), s, target) if target else None})
+    optimum = min(r["final_cost"] for r in rows)
+    for r in rows:
+        r.update(sequence=sequence, formulation=formulation,
+                 chi2_above_optimum=2 * (r["final_cost"] - optimum))
+    return rows
+
+
+def ratio(a, b):
+    return f"{a / b:.2f}×" if a and b else "–"
+
+
+def table(rows):
+    lines = ["| graph | variables | GTSAM released: iterations, process s, χ² above optimum | "
+             "dynslam defaults: steps, process s, χ² above optimum | to GTSAM's cost, GTSAM / "
+             "dynslam | whole process, GTSAM / dynslam | `--tolerances gtsam`: steps, process s, "
+             "GTSAM / dynslam | 1 → 2 threads | peak memory per variable |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    graphs = sorted({(r["sequence"], r["formulation"]) for r in rows},
+                    key=lambda g: (g[0], FORMULATIONS.index(g[1])))
+    for sequence, formulation in graphs:
+        by = {r["run"]: r for r in rows
+              if (r["sequence"], r["formulation"]) == (sequence, formulation)}
+        d, g, t, one = by["defaults"], by.get("gtsam_released"), by["tolerances_gtsam"], \
+            by.get("threads_1")
+        gtsam = (f"{g['steps']}, {g['wall_s']:.1f}, {g['chi2_above_optimum']:.3f}" if g else "–")
+        lines.append(
+            f"| {sequence} {formulation} | {d['variables']} | {gtsam} | {d['steps']}, "
+            f"{d['wall_s']:.1f}, {d['chi2_above_optimum']:.3f} | "
+            f"{ratio(g and g['solve_s'], d['to_gtsam_cost_s'])} | "
+            f"{ratio(g and g['wall_s'], d['wall_s'])} | {t['steps']}, {t['wall_s']:.1f}, "
+            f"{ratio(g and g['wall_s'], t['wall_s'])} | "
+            f"{ratio(one and one['wall_s'], d['wall_s'])} | "
+            f"{d['peak_kib'] / d['variables']:.2f} KiB |")
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--sequences", nargs="+", default=["0003", "0005", "0020"])
+    parser.add_argument("--formulations", nargs="+", default=FORMULATIONS, choices=FORMULATIONS)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--gtsam", help="folder of gtsam_ref and gtsam_hy (build_gtsam.sh's bin/)")
+    parser.add_argument("--dynslam", default=str(ROOT / "build/release/apps/dynslam"))
+    parser.add_argument("--one-thread", nargs="*", default=["0020"],
+                        help="sequences also solved with --threads 1")
+    parser.add_argument("--no-tight", action="store_true",
+                        help="no --tolerances tight solve (the optimum is then the best of the rest)")
+    parser.add_argument("--out", default=str(ROOT / "out/paper_scale"))
+    args = parser.parse_args()
+    out = pathlib.Path(args.out)
+    rows = []
+    for sequence in args.sequences:
+        graphs = prepare(args.dynslam, sequence, args.seed, args.formulations, out)
+        for formulation, graph in graphs.items():
+            rows += runs_of_graph(args, sequence, formulation, graph,
+                                  out / sequence / "runs" / formulation)
+            print(f"[paper_scale] {sequence} {formulation} done", file=sys.stderr, flush=True)
+    fields = ["sequence", "formulation", "run", "variables", "steps", "final_cost",
+              "chi2_above_optimum", "solve_s", "to_gtsam_cost_s", "wall_s", "peak_kib"]
+    with open(out / "runs.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields)
+        writer.writeheader()
+        writer.writerows(rows)
+    text = "\n".join(table(rows)) + "\n"
+    (out / "table.md").write_text(text)
+    with open(out / "runs.json", "w") as f:
+        json.dump({"command": "benchmarks/paper_scale.py " + " ".join(sys.argv[1:]),
+                   "date": datetime.date.today().isoformat(), "commit": commit(),
+                   "machine": machine()}, f, indent=1)
+    print(text, end="")
+
+
+if __name__ == "__main__":
+    main()
