@@ -342,31 +342,35 @@ def test_uncertainty_plot_of_a_solve_with_covariances(tmp_path):
     assert missing.returncode != 0 and "no solution.g2o" in missing.stderr
 
 
+def command_flags(command):
+    """The options `dynslam COMMAND --help` lists, spelled as Python keywords."""
+    text = subprocess.run([os.environ["DYNSLAM_CLI"], command, "--help"], check=True,
+                          capture_output=True, text=True).stdout
+    return {line.split()[0][2:].replace("-", "_") for line in text.splitlines()
+            if line.startswith("  --")}
+
+
+def documented_options(function):
+    """The options a docstring lists ("    name (type, default value): help")."""
+    return {line.split()[0] for line in function.__doc__.splitlines()
+            if line.startswith("    ") and "(" in line}
+
+
 def test_docstrings_list_every_option():
-    """help(dynslam.solve) and help(dynslam.build) name every option with its default; the
-    names are the option tables' (the command line's flags with '_' for '-')."""
-    solve_help = subprocess.run([os.environ["DYNSLAM_CLI"], "solve", "--help"], check=True,
-                                capture_output=True, text=True).stdout
-    flags = {line.split()[0][2:].replace("-", "_") for line in solve_help.splitlines()
-             if line.startswith("  --")}
-    documented = {line.split()[0] for line in dynslam.solve.__doc__.splitlines()
-                  if line.startswith("    ") and "(" in line}
+    """help(dynslam.solve), help(dynslam.build) and help(dynslam.simulate) name every option
+    with its default; the names are the option tables' (the flags with '_' for '-')."""
+    documented = documented_options(dynslam.solve)
     assert {"remaining_chi2", "tolerances", "robust", "max_time", "dsc_released_lm"} <= documented
-    assert documented <= flags  # every solver option is a flag of `dynslam solve` too
+    assert documented <= command_flags("solve")  # every solver option is a flag of `solve` too
     assert "    remaining_chi2 (float, default 0.01" in dynslam.solve.__doc__
     assert "    extrapolation (bool, default True" in dynslam.solve.__doc__
-    build_documented = {line.split()[0] for line in dynslam.build.__doc__.splitlines()
-                        if line.startswith("    ") and "(" in line}
-    assert {"object_init", "hybrid_smoothing_info", "kinematic_sigma"} <= build_documented
-    simulate_help = subprocess.run([os.environ["DYNSLAM_CLI"], "simulate", "--help"], check=True,
-                                   capture_output=True, text=True).stdout
-    simulate_flags = {line.split()[0][2:].replace("-", "_") for line in simulate_help.splitlines()
-                      if line.startswith("  --")}
-    simulate_documented = {line.split()[0] for line in dynslam.simulate.__doc__.splitlines()
-                           if line.startswith("    ") and "(" in line}
+    assert {"object_init", "hybrid_smoothing_info", "kinematic_sigma"} <= documented_options(
+        dynslam.build)
+    simulate_documented = documented_options(dynslam.simulate)
     assert {"frames", "seed", "synthetic", "noise", "static_points"} <= simulate_documented
     # every flag of `dynslam simulate` but the command's own (where to read and write, density)
-    assert simulate_flags - simulate_documented == {"help", "kitti", "seq", "density", "out"}
+    assert command_flags("simulate") - simulate_documented == {"help", "kitti", "seq", "density",
+                                                               "out"}
 
 
 def test_robust_kernels_as_text_reach_the_solver():
