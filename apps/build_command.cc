@@ -42,53 +42,36 @@ int RunBuild(int argc, char** argv) {
   CompatFlags compat(&parser);
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   if (ReportedProblem(compat.Finish())) return kExitBadInput;
-  if (out_path.empty()) {
-    std::cerr << "error: --out FILE is required\n";
-    return kExitBadInput;
-  }
+  if (out_path.empty()) return ErrorExit("--out FILE is required", kExitBadInput);
   BuildOptions options;
   if (ReportedProblem(build_flags.Finish(&options))) return kExitBadInput;
   compat.Apply(&options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);
   if (!start_path.empty() && !IsObjectCentric(formulation)) {
-    std::cerr << "error: --start applies to oc_a, oc_b and oc_c, not " << formulation_name << "\n";
-    return kExitBadInput;
+    return ErrorExit("--start applies to oc_a, oc_b and oc_c, not " + formulation_name, kExitBadInput);
   }
 
   ReadOptions read_options;
   compat.Apply(&read_options);
   Expected<Graph> front_end = ReadGraph(front_end_path, read_options);
-  if (!front_end.ok()) {
-    std::cerr << "error: " << front_end.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!front_end.ok()) return ErrorExit(front_end.error(), kExitBadInput);
   std::optional<GroundTruth> gt;
   if (!ReadGroundTruthIfGiven(gt_path, &gt)) return kExitBadInput;
   BuildReport report;
   Expected<Graph> built = BuildFormulation(*front_end, formulation, options, gt ? &*gt : nullptr,
                                            &report, std::filesystem::path(front_end_path).filename().string());
-  if (!built.ok()) {
-    std::cerr << "error: " << built.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!built.ok()) return ErrorExit(built.error(), kExitBadInput);
   if (!start_path.empty()) {
     Expected<Graph> world_centric = ReadGraph(start_path, read_options);
-    if (!world_centric.ok()) {
-      std::cerr << "error: " << world_centric.error().ToString() << "\n";
-      return kExitBadInput;
-    }
+    if (!world_centric.ok()) return ErrorExit(world_centric.error(), kExitBadInput);
     Status started = StartFromWorldCentric(*front_end, *world_centric, options,
                                            gt ? &*gt : nullptr, &*built, start_path);
-    if (!started.ok()) {
-      std::cerr << "error: --start: " << started.error().ToString() << "\n";
-      return kExitBadInput;
-    }
+    if (!started.ok()) return ErrorExit("--start: " + started.error().ToString(), kExitBadInput);
     report.lines.push_back("initial values from " + start_path + " (--start, SPEC §3.5)");
   }
   if (Status status = WriteGraph(*built, out_path); !status.ok()) {
-    std::cerr << "error: " << status.error().ToString() << "\n";
-    return kExitFailed;
+    return ErrorExit(status.error(), kExitFailed);
   }
   std::fputs(report.ToText().c_str(), stdout);
   std::printf("written: %s\n", out_path.c_str());

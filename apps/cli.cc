@@ -29,33 +29,45 @@ bool ReportedProblem(const std::optional<std::string>& problem) {
   return problem.has_value();
 }
 
+int ErrorExit(const Error& error, int exit_code) { return ErrorExit(error.ToString(), exit_code); }
+
+int ErrorExit(const std::string& message, int exit_code) {
+  std::cerr << "error: " << message << "\n";
+  return exit_code;
+}
+
 ArgParser::ArgParser(std::string usage, std::string description)
     : usage_(std::move(usage)), description_(std::move(description)) {}
 
-void ArgParser::Add(Option option) {
+ArgParser::Option& ArgParser::Add(const std::string& name, const std::string& metavar,
+                                  const std::string& help, const std::string& default_text,
+                                  Setter set) {
+  Option option;
+  option.name = name;
+  option.metavar = metavar;
+  option.help = help;
+  option.default_text = default_text;
+  option.set = std::move(set);
   option.group = group_;
   options_.push_back(std::move(option));
+  return options_.back();
 }
 
 void ArgParser::AddFlag(const std::string& name, bool* target, const std::string& help) {
-  Add({name, "", help, *target ? "on" : "off", [target](const std::string&) {
-         *target = true;
-         return std::optional<std::string>();
-       }});
+  Add(name, "", help, *target ? "on" : "off", [target](const std::string&) {
+    *target = true;
+    return std::optional<std::string>();
+  });
 }
 
 void ArgParser::AddValue(const std::string& name, const std::string& metavar,
-                         const std::string& help, const std::string& default_text,
-                         std::function<std::optional<std::string>(const std::string&)> set) {
-  Add({name, metavar, help, default_text, std::move(set)});
+                         const std::string& help, const std::string& default_text, Setter set) {
+  Add(name, metavar, help, default_text, std::move(set));
 }
 
 void ArgParser::AddSwitch(const std::string& name, const std::string& help,
-                          const std::string& default_text,
-                          std::function<std::optional<std::string>(const std::string&)> set) {
-  Option option{name, "[on|off]", help, default_text, std::move(set)};
-  option.value_optional = true;
-  Add(std::move(option));
+                          const std::string& default_text, Setter set) {
+  Add(name, "[on|off]", help, default_text, std::move(set)).value_optional = true;
 }
 
 void ArgParser::AddAlias(const std::string& name, const std::string& alias) {
@@ -84,13 +96,6 @@ void ArgParser::AddChoice(const std::string& name, std::string* target,
              }
              return "'" + value + "' is not one of " + metavar;
            });
-}
-
-void ArgParser::AddInt(const std::string& name, int64_t* target, const std::string& help,
-                       int64_t min_value, int64_t max_value) {
-  AddValue(name, "N", help, std::to_string(*target), [=](const std::string& value) {
-    return ParseInteger(value, min_value, max_value, target);
-  });
 }
 
 void ArgParser::AddDouble(const std::string& name, double* target, const std::string& help,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dynslam/options.h"
+#include "dynslam/status.h"
 
 namespace dynslam::cli {
 
@@ -22,29 +23,34 @@ inline constexpr int kExitBadInput = 2;  // bad usage or bad input
 // did: `if (ReportedProblem(flags.Finish())) return kExitBadInput;`.
 bool ReportedProblem(const std::optional<std::string>& problem);
 
+// Prints "error: " and the error to stderr and returns `exit_code`:
+// `if (!graph.ok()) return ErrorExit(graph.error(), kExitBadInput);`.
+int ErrorExit(const Error& error, int exit_code);
+int ErrorExit(const std::string& message, int exit_code);
+
 // Declares options and positionals, parses argv and writes --help. Every option is spelled
 // out (`--linear-solver NAME`); `--name=value` is accepted too. A default is the value the
 // target holds when the option is declared.
 class ArgParser {
  public:
+  // Takes an option's text: nullopt, or what is wrong with it.
+  using Setter = std::function<std::optional<std::string>(const std::string&)>;
+
   ArgParser(std::string usage, std::string description);
 
   void AddFlag(const std::string& name, bool* target, const std::string& help);
   // An option with a value shown as `metavar`; `set` checks and takes it (error or nullopt).
   void AddValue(const std::string& name, const std::string& metavar, const std::string& help,
-                const std::string& default_text,
-                std::function<std::optional<std::string>(const std::string&)> set);
+                const std::string& default_text, Setter set);
   void AddString(const std::string& name, std::string* target, const std::string& help,
                  const std::string& metavar = "VALUE");
   void AddChoice(const std::string& name, std::string* target,
                  const std::vector<std::string>& choices, const std::string& help);
-  void AddInt(const std::string& name, int64_t* target, const std::string& help,
-              int64_t min_value, int64_t max_value);
   void AddDouble(const std::string& name, double* target, const std::string& help,
                  double min_value, double max_value);
   // An option whose value is optional (a switch: --name alone means on; --name on|off too).
   void AddSwitch(const std::string& name, const std::string& help, const std::string& default_text,
-                 std::function<std::optional<std::string>(const std::string&)> set);
+                 Setter set);
   // The --help section of the options declared after this call (until the next).
   void Group(std::string name) { group_ = std::move(name); }
   // A command line shown under "examples:" at the end of --help.
@@ -71,7 +77,7 @@ class ArgParser {
     std::string metavar;  // empty for a flag
     std::string help;
     std::string default_text;
-    std::function<std::optional<std::string>(const std::string&)> set;  // error or nullopt
+    Setter set;
     std::string group;
     bool value_optional = false;  // a switch
     std::vector<std::string> aliases;
@@ -86,7 +92,8 @@ class ArgParser {
 
   Option* FindOption(const std::string& name);
 
-  void Add(Option option);
+  Option& Add(const std::string& name, const std::string& metavar, const std::string& help,
+              const std::string& default_text, Setter set);
 
   std::string usage_;
   std::string description_;

@@ -259,10 +259,7 @@ int RunCompare(int argc, char** argv) {
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
   if (ReportedProblem(compat.Finish())) return kExitBadInput;
-  if (out_dir.empty()) {
-    std::cerr << "error: --out DIR is required\n";
-    return kExitBadInput;
-  }
+  if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   CompareOptions options;
   options.formulations.clear();
   if (!ParseFormulationList(formulation_list, &options.formulations)) return kExitBadInput;
@@ -298,24 +295,17 @@ int RunCompare(int argc, char** argv) {
   ReadOptions read_options;
   compat.Apply(&read_options);
   Expected<Graph> front_end = ReadGraph(front_end_path, read_options);
-  if (!front_end.ok()) {
-    std::cerr << "error: " << front_end.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!front_end.ok()) return ErrorExit(front_end.error(), kExitBadInput);
   std::optional<GroundTruth> gt;
   if (!ReadGroundTruthIfGiven(gt_path, &gt)) return kExitBadInput;
   // The tables mark a finished compare: a run that fails or is killed leaves none behind.
   for (const char* name : {"tables.md", "tables.csv"}) {
     if (Status s = RemoveIfPresent((fs::path(out_dir) / name).string()); !s.ok()) {
-      std::cerr << "error: " << s.error().ToString() << "\n";
-      return kExitFailed;
+      return ErrorExit(s.error(), kExitFailed);
     }
   }
   Expected<CompareRun> run = CompareFormulations(*front_end, gt ? &*gt : nullptr, options);
-  if (!run.ok()) {
-    std::cerr << "error: " << run.error().ToString() << "\n";
-    return kExitFailed;
-  }
+  if (!run.ok()) return ErrorExit(run.error(), kExitFailed);
   if (run->stopped) {
     std::fprintf(stderr, "[compare] stopped by a signal after %s: tables for what finished\n",
                  FormulationName(run->rows.back().formulation));
@@ -324,8 +314,7 @@ int RunCompare(int argc, char** argv) {
   for (const auto& [name, text] :
        {std::pair{"tables.csv", &tables.csv}, std::pair{"tables.md", &tables.markdown}}) {
     if (Status s = WriteFileAtomically((fs::path(out_dir) / name).string(), *text); !s.ok()) {
-      std::cerr << "error: " << s.error().ToString() << "\n";
-      return kExitFailed;
+      return ErrorExit(s.error(), kExitFailed);
     }
   }
   std::fputs(tables.markdown.c_str(), stdout);

@@ -27,20 +27,14 @@ int RunMetrics(int argc, char** argv) {
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
 
   Expected<Graph> solved = ReadGraph(solved_path);
-  if (!solved.ok()) {
-    std::cerr << "error: " << solved.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!solved.ok()) return ErrorExit(solved.error(), kExitBadInput);
   if (!solved->labelled) {
     std::cerr << "error: " << solved_path
               << ": the file has no labels; metrics need the frame and object of every variable\n";
     return kExitBadInput;
   }
   Expected<GroundTruth> gt = ReadGroundTruth(gt_path);
-  if (!gt.ok()) {
-    std::cerr << "error: " << gt.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!gt.ok()) return ErrorExit(gt.error(), kExitBadInput);
   // The shape of the reference metrics.json: the metrics and what they were computed from,
   // keys in alphabetical order.
   const JsonValue metrics = MetricsToJson(ComputeMetrics(*solved, *gt));
@@ -55,8 +49,7 @@ int RunMetrics(int argc, char** argv) {
   std::fputs(json.c_str(), stdout);
   if (!out_path.empty()) {
     if (Status status = WriteFileAtomically(out_path, json); !status.ok()) {
-      std::cerr << "error: " << status.error().ToString() << "\n";
-      return kExitFailed;
+      return ErrorExit(status.error(), kExitFailed);
     }
   }
   return kExitOk;

@@ -64,10 +64,7 @@ int RunSimulate(int argc, char** argv) {
   parser.AddString("out", &out_prefix, "writes PREFIX.g2o and PREFIX.gt.txt (required)",
                    "PREFIX");
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  auto usage_error = [](const std::string& message) {
-    std::cerr << "error: " << message << "\n";
-    return kExitBadInput;
-  };
+  auto usage_error = [](const std::string& message) { return ErrorExit(message, kExitBadInput); };
   SimulateOptions o;
   if (ReportedProblem(simulate_flags.Finish(&o))) return kExitBadInput;
   if (out_prefix.empty()) return usage_error("--out PREFIX is required");
@@ -113,14 +110,12 @@ int RunSimulate(int argc, char** argv) {
   for (std::string line; std::getline(lines, line);) graph_text << "# " << line << "\n";
   WriteGraph(simulated->graph, graph_text);
   if (Status status = WriteFileAtomically(graph_path, graph_text.str()); !status.ok()) {
-    std::cerr << "error: " << status.error().ToString() << "\n";
-    return kExitFailed;
+    return ErrorExit(status.error(), kExitFailed);
   }
   if (Status status = WriteGroundTruth(simulated->ground_truth, gt_path,
                                        "ground truth written by dynslam simulate\n" + header);
       !status.ok()) {
-    std::cerr << "error: " << status.error().ToString() << "\n";
-    return kExitFailed;
+    return ErrorExit(status.error(), kExitFailed);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

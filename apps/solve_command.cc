@@ -118,10 +118,7 @@ int RunSolve(int argc, char** argv) {
     return kExitBadInput;
   }
   if (check_options) return kExitOk;
-  if (out_dir.empty()) {
-    std::cerr << "error: --out DIR is required\n";
-    return kExitBadInput;
-  }
+  if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   PrintProgressAfterOneSecond(&options);
   StopOnSignals(&options);
 
@@ -131,10 +128,7 @@ int RunSolve(int argc, char** argv) {
   compat.Apply(&read_options);
   ReadReport read_report;
   Expected<Graph> graph = ReadGraph(graph_path, read_options, &read_report);
-  if (!graph.ok()) {
-    std::cerr << "error: " << graph.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!graph.ok()) return ErrorExit(graph.error(), kExitBadInput);
   std::optional<GroundTruth> ground_truth;
   if (!ReadGroundTruthIfGiven(gt_path, &ground_truth)) return kExitBadInput;
   SolveOutputs outputs;
@@ -157,8 +151,7 @@ int RunSolve(int argc, char** argv) {
   if (!report.ok()) {
     Error error = report.error();
     if (error.file.empty() && error.line > 0) error.file = graph_path;
-    std::cerr << "error: " << error.ToString() << "\n";
-    return kExitBadInput;
+    return ErrorExit(error, kExitBadInput);
   }
   outputs.solved = &*graph;
   outputs.report = &*report;
@@ -179,8 +172,7 @@ int RunSolve(int argc, char** argv) {
     }
   }
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
-    std::cerr << "error: " << status.error().ToString() << "\n";
-    return kExitFailed;
+    return ErrorExit(status.error(), kExitFailed);
   }
   PrintSummary(outputs, out_dir);
   if (ceres_report) std::printf("%s", report->ceres_report.c_str());
@@ -195,13 +187,9 @@ int RunSolve(int argc, char** argv) {
                 static_cast<long long>(m.object_pose.count));
   }
   if (!report->usable) {
-    std::cerr << "error: the solve failed: " << report->termination_detail << "\n";
-    return kExitFailed;
+    return ErrorExit("the solve failed: " + report->termination_detail, kExitFailed);
   }
-  if (covariance_problem) {
-    std::cerr << "error: --covariance: " << *covariance_problem << "\n";
-    return kExitFailed;
-  }
+  if (covariance_problem) return ErrorExit("--covariance: " + *covariance_problem, kExitFailed);
   return ExitCodeAfterStopSignal(kExitOk);
 }
 

@@ -41,10 +41,7 @@ int RunVerify(int argc, char** argv) {
   tolerances.assert_variables = !report_variables;
 
   Expected<VerifyReport> report = Verify(result_dir, reference_dir, tolerances);
-  if (!report.ok()) {
-    std::cerr << "error: " << report.error().ToString() << "\n";
-    return kExitBadInput;
-  }
+  if (!report.ok()) return ErrorExit(report.error(), kExitBadInput);
   std::fputs(report->ToText().c_str(), stdout);
   return report->pass ? kExitOk : kExitFailed;
 }
