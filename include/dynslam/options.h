@@ -1,5 +1,6 @@
-// Options declared once. Each solver and build option is one entry of an option table
-// (SolverOptionTable in solver_options.h, BuildOptionTable in formulation.h): its name, what it
+// Options declared once. Each solver, build and simulation option is one entry of an option
+// table (SolverOptionTable in solver_options.h, BuildOptionTable in formulation.h,
+// SimulateOptionTable in simulate.h): its name, what it
 // does, the values it takes, and how to read and write it as text. The command-line flags and
 // their --help, the Python keyword arguments and their docstrings, summary.json's "solver" block
 // and docs/OPTIONS.md are all made from the tables, so an option has one spelling everywhere:
