@@ -1,7 +1,6 @@
 #include "arrays.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <type_traits>
@@ -10,6 +9,7 @@
 
 #include "dynslam/graph_io.h"
 #include "errors.h"
+#include "src/number_text.h"
 
 namespace dynslam::python {
 namespace {
@@ -176,6 +176,21 @@ py::dict VertexColumns(const Graph& graph, VertexType type, const std::vector<La
   return out;
 }
 
+// The role named `name` as summary.json names it ("camera", …), or null.
+const RoleInfo* RoleNamed(const std::string& name) {
+  for (const RoleInfo& info : kRoles) {
+    if (name == info.name) return &info;
+  }
+  return nullptr;
+}
+
+// "camera, static_point, …": every role's name, for errors.
+std::string RoleNames() {
+  std::string names;
+  for (const RoleInfo& info : kRoles) names += (names.empty() ? "" : ", ") + std::string(info.name);
+  return names;
+}
+
 std::vector<LabelField> FieldsOf(const RoleInfo& role) {
   return {role.fields.begin(), role.fields.begin() + role.num_fields};
 }
@@ -196,12 +211,6 @@ struct RowsText {
     origin.push_back(where);
   }
 };
-
-void AppendNumber(std::string* out, double value) {
-  char buffer[32];
-  *out += ' ';
-  out->append(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
-}
 
 std::string Repr(const std::vector<py::ssize_t>& dims) {
   std::string text = "(";
@@ -266,7 +275,10 @@ void AppendField(const py::array& column, Shape shape, py::ssize_t row, const st
   const py::ssize_t width = dims.size() == 1 ? dims[0] : dims[0] * dims[1];
   const double* first = static_cast<const double*>(column.data()) + row * width;
   if (dims.size() == 1) {
-    for (py::ssize_t i = 0; i < width; ++i) AppendNumber(line, first[i]);
+    for (py::ssize_t i = 0; i < width; ++i) {
+      *line += ' ';
+      AppendNumber(line, first[i]);
+    }
     return;
   }
   const py::ssize_t n = dims[0];
@@ -277,6 +289,7 @@ void AppendField(const py::array& column, Shape shape, py::ssize_t row, const st
       if (std::abs(first[r * n + c] - first[c * n + r]) > 1e-9 * largest) {
         throw py::value_error(at + " row " + std::to_string(row) + " is not symmetric");
       }
+      *line += ' ';
       AppendNumber(line, first[r * n + c]);
     }
   }
@@ -290,15 +303,11 @@ struct VertexTable {
 };
 
 VertexTable ParseVertexTable(const std::string& name) {
-  std::string names;
-  for (const RoleInfo& info : kRoles) {
-    if (name == info.name) return {&info, info.type};
-    names += std::string(info.name) + ", ";
-  }
+  if (const RoleInfo* role = RoleNamed(name)) return {role, role->type};
   if (name == "pose") return {nullptr, VertexType::kPose};
   if (name == "point") return {nullptr, VertexType::kPoint};
-  throw py::value_error("unknown vertex table '" + name + "' (" + names +
-                        "or pose, point for unlabelled vertices)");
+  throw py::value_error("unknown vertex table '" + name + "' (" + RoleNames() +
+                        ", or pose, point for unlabelled vertices)");
 }
 
 // A label field the role does not have is accepted when every row holds -1 (as vertices()
@@ -382,13 +391,9 @@ void WriteEdgeTable(const py::dict& table, RowsText* out) {
 }  // namespace
 
 py::dict Vertices(const Graph& graph, const std::string& role_name) {
-  const RoleInfo* role = nullptr;
-  for (const RoleInfo& info : kRoles) {
-    if (role_name == info.name) role = &info;
-  }
+  const RoleInfo* role = RoleNamed(role_name);
   if (role == nullptr) {
-    throw py::value_error("unknown role '" + role_name + "' (camera, static_point, dynamic_point, "
-                          "motion, object_pose, object_point, hybrid_motion, embedded_frame)");
+    throw py::value_error("unknown role '" + role_name + "' (" + RoleNames() + ")");
   }
   return VertexColumns(graph, role->type, {std::begin(kAllLabelFields), std::end(kAllLabelFields)},
                        [&](const Vertex& v) { return v.label.role == role->role; });

@@ -1,7 +1,6 @@
 #include "options.h"
 
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
