@@ -25,7 +25,7 @@ std::string Wrapped(const std::string& text, size_t indent, size_t width) {
 }  // namespace
 
 bool ReportedProblem(const std::optional<std::string>& problem) {
-  if (problem) std::cerr << "error: " << *problem << "\n";
+  if (problem) ErrorExit(*problem, kExitBadInput);
   return problem.has_value();
 }
 

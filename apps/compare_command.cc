@@ -269,15 +269,14 @@ int RunCompare(int argc, char** argv) {
     return kExitBadInput;
   }
   if (!options.covariance.empty() && options.resume) {
-    std::cerr << "error: --covariance and --resume: a solve read back has no covariances; give "
-                 "one of them\n";
-    return kExitBadInput;
+    return ErrorExit("--covariance and --resume: a solve read back has no covariances; give one "
+                     "of them",
+                     kExitBadInput);
   }
   options.start_from_world_centric = start == "wc";
   if (options.start_from_world_centric &&
       (options.formulations.empty() || options.formulations[0] != Formulation::kWorldCentric)) {
-    std::cerr << "error: --start wc: wc must come first in --formulations\n";
-    return kExitBadInput;
+    return ErrorExit("--start wc: wc must come first in --formulations", kExitBadInput);
   }
   if (ReportedProblem(build_flags.Finish(&options.build))) return kExitBadInput;
   if (ReportedProblem(solver_flags.Finish(&options.solver))) return kExitBadInput;

@@ -29,9 +29,9 @@ int RunMetrics(int argc, char** argv) {
   Expected<Graph> solved = ReadGraph(solved_path);
   if (!solved.ok()) return ErrorExit(solved.error(), kExitBadInput);
   if (!solved->labelled) {
-    std::cerr << "error: " << solved_path
-              << ": the file has no labels; metrics need the frame and object of every variable\n";
-    return kExitBadInput;
+    return ErrorExit(solved_path + ": the file has no labels; metrics need the frame and object of "
+                     "every variable",
+                     kExitBadInput);
   }
   Expected<GroundTruth> gt = ReadGroundTruth(gt_path);
   if (!gt.ok()) return ErrorExit(gt.error(), kExitBadInput);
