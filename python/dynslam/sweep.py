@@ -71,19 +71,27 @@ def _unique_key(*parts):
     return "-".join(str(p) for p in parts) + f"-{time.time_ns()}"
 
 
+# Largest first: every simulation before any cell, then the cells of larger front ends before
+# smaller ones (Dask runs higher priorities first), so that the longest solves of a sweep do not
+# start last while the other workers wait (docs/SWEEPS.md).
+SIMULATE_PRIORITY = sys.maxsize
+
+
 def _simulate(client, sweep, out, cell):
     """The front end of `cell`'s scene and seed."""
     return client.submit(_sweep_cells.simulate, os.path.join(out, cell.scene_dir), cell.scene,
                          cell.seed, sweep.frames, sweep.density, sweep.kitti, pure=False,
+                         priority=SIMULATE_PRIORITY,
                          key=_unique_key("simulate", cell.scene, f"s{cell.seed}"))
 
 
 def _cells(client, sweep, out, frontend, cells):
     """The cells of one simulated scene, as independent tasks: the files `frontend` names are
     on the shared DIR, so no task depends on another (Dask 2022.12's scheduler could stall when
-    a worker holding a dependency died)."""
+    a worker holding a dependency died). Their priority is the front end's size in bytes."""
+    priority = os.path.getsize(frontend[0])
     return {client.submit(_sweep_cells.run_cell, frontend, out, cell,
-                          sweep.options[cell.options], pure=False,
+                          sweep.options[cell.options], pure=False, priority=priority,
                           key=_unique_key("cell", cell.scene, f"s{cell.seed}", cell.formulation,
                                           cell.options)): cell
             for cell in cells}
