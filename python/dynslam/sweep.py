@@ -10,6 +10,8 @@ some failed, 2 a bad sweep file or usage, 130 interrupted.
 """
 import argparse
 import fcntl
+import heapq
+import itertools
 import os
 import signal
 import sys
@@ -71,59 +73,80 @@ def _unique_key(*parts):
     return "-".join(str(p) for p in parts) + f"-{time.time_ns()}"
 
 
-# Largest first: every simulation before any cell, then the cells of larger front ends before
-# smaller ones (Dask runs higher priorities first), so that the longest solves of a sweep do not
-# start last while the other workers wait (docs/SWEEPS.md).
-SIMULATE_PRIORITY = sys.maxsize
-
-
 def _simulate(client, sweep, out, cell):
     """The front end of `cell`'s scene and seed."""
     return client.submit(_sweep_cells.simulate, os.path.join(out, cell.scene_dir), cell.scene,
                          cell.seed, sweep.frames, sweep.density, sweep.kitti, pure=False,
-                         priority=SIMULATE_PRIORITY,
                          key=_unique_key("simulate", cell.scene, f"s{cell.seed}"))
 
 
-def _cells(client, sweep, out, frontend, cells):
-    """The cells of one simulated scene, as independent tasks: the files `frontend` names are
-    on the shared DIR, so no task depends on another (Dask 2022.12's scheduler could stall when
-    a worker holding a dependency died). Their priority is the front end's size in bytes."""
-    priority = os.path.getsize(frontend[0])
-    return {client.submit(_sweep_cells.run_cell, frontend, out, cell,
-                          sweep.options[cell.options], pure=False, priority=priority,
-                          key=_unique_key("cell", cell.scene, f"s{cell.seed}", cell.formulation,
-                                          cell.options)): cell
-            for cell in cells}
+def _submit_cell(client, sweep, out, frontend, cell):
+    """One cell as an independent task: the files `frontend` names are on the shared DIR, so no
+    task depends on another (Dask 2022.12's scheduler could stall when a worker holding a
+    dependency died)."""
+    return client.submit(_sweep_cells.run_cell, frontend, out, cell, sweep.options[cell.options],
+                         pure=False, key=_unique_key("cell", cell.scene, f"s{cell.seed}",
+                                                     cell.formulation, cell.options))
+
+
+class LargestFirst:
+    """The cells waiting for a worker, the cells of the largest front-end file first (ties in the
+    order they were added): the longest solves start first, so the end of a sweep does not leave
+    workers idle behind one long cell (docs/SWEEPS.md)."""
+
+    def __init__(self):
+        self._heap, self._added = [], itertools.count()
+
+    def add(self, frontend, cells):
+        size = os.path.getsize(frontend[0])
+        for cell in cells:
+            heapq.heappush(self._heap, (-size, next(self._added), frontend, cell))
+
+    def __len__(self):
+        return len(self._heap)
+
+    def pop(self):
+        """(frontend, cell) of the largest waiting cell."""
+        _, _, frontend, cell = heapq.heappop(self._heap)
+        return frontend, cell
+
+
+def _worker_threads(client):
+    return max(1, sum(client.nthreads().values()))
 
 
 def _run_cells(client, sweep, out, cells, results, progress):
-    """One simulate task per scene and seed; once it is done, its cells. Records every cell."""
+    """Every simulation first (one task per scene and seed), then the cells, largest first and
+    no more at a time than the cluster has worker threads: the order is the client's, since Dask
+    sends a task to a worker as soon as it is submitted. Records every cell."""
     by_scene = {}
     for cell in cells:
         by_scene.setdefault((cell.scene, cell.seed), []).append(cell)
     simulations = {_simulate(client, sweep, out, scene_cells[0]): key
                    for key, scene_cells in by_scene.items()}
-    cell_of = {}
+    waiting, running, simulating = LargestFirst(), {}, len(simulations)
     pending = as_completed(list(simulations))
     for future in pending:
         if future in simulations:
+            simulating -= 1
             scene_cells = by_scene[simulations[future]]
             try:
-                frontend = future.result()
+                waiting.add(future.result(), scene_cells)
             except Exception as error:  # the simulate failed (its message) or its worker died
                 for cell in scene_cells:
                     _record(results, progress, _failed_row(cell, error))
-                continue
-            submitted = _cells(client, sweep, out, frontend, scene_cells)
-            cell_of.update(submitted)
-            pending.update(submitted)
-            continue
-        try:
-            row = future.result()
-        except Exception as error:  # a worker lost more often than Dask allows
-            row = _failed_row(cell_of[future], error)
-        _record(results, progress, row)
+        else:
+            cell = running.pop(future)
+            try:
+                row = future.result()
+            except Exception as error:  # a worker lost more often than Dask allows
+                row = _failed_row(cell, error)
+            _record(results, progress, row)
+        while simulating == 0 and waiting and len(running) < _worker_threads(client):
+            frontend, cell = waiting.pop()
+            submitted = _submit_cell(client, sweep, out, frontend, cell)
+            running[submitted] = cell
+            pending.add(submitted)
 
 
 def _record(results, progress, row):

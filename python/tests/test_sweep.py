@@ -116,34 +116,23 @@ def test_a_formulation_against_itself_is_never_significant():
     assert all(c["median_difference"] == 0 and c["pairs"] == 10 for c in comparisons)
 
 
-# --- scheduling: simulations first, then the cells of larger front ends ---
+# --- scheduling: the cells of larger front ends first ---
 
-class RecordingClient:
-    """Stands in for a Dask client: records each task's priority."""
-
-    def __init__(self):
-        self.priorities = {}
-
-    def submit(self, function, *args, priority=0, key, **kwargs):
-        self.priorities[key] = priority
-        return key
-
-
-def test_simulations_come_first_then_the_cells_of_larger_front_ends(tmp_path):
-    from dynslam import sweep as sw
-    from dynslam._sweep_spec import Cell, Sweep
-    spec = Sweep(path="s.toml", scenes=["small", "large"], frames="", density="frontend",
-                 seeds=[1], formulations=["wc", "oc_a"], options={"default": []}, kitti="")
-    client = RecordingClient()
-    simulation = sw._simulate(client, spec, str(tmp_path), spec.cells()[0])
-    priorities = {}
-    for scene, size in (("small", 10), ("large", 1000)):
+def test_cells_wait_largest_front_end_first_ties_in_order(tmp_path):
+    from dynslam.sweep import LargestFirst
+    from dynslam._sweep_spec import Cell
+    waiting = LargestFirst()
+    for scene, size in (("small", 10), ("large", 1000), ("middle", 100)):
         frontend = (write(tmp_path / f"{scene}.g2o", "x" * size), str(tmp_path / "gt.txt"))
-        cells = [Cell(scene, 1, f, "default") for f in spec.formulations]
-        keys = sw._cells(client, spec, str(tmp_path), frontend, cells)
-        priorities[scene] = {client.priorities[key] for key in keys}
-    assert priorities == {"small": {10}, "large": {1000}}
-    assert client.priorities[simulation] > 1000
+        waiting.add(frontend, [Cell(scene, 1, f, "default") for f in ("wc", "oc_a")])
+    order = []
+    while waiting:
+        frontend, cell = waiting.pop()
+        order.append((cell.scene, cell.formulation))
+        if len(order) == 1:  # a late arrival larger than what waits goes first
+            waiting.add((write(tmp_path / "late.g2o", "x" * 500), ""), [Cell("late", 1, "wc", "x")])
+    assert order == [("large", "wc"), ("large", "oc_a"), ("late", "wc"), ("middle", "wc"),
+                     ("middle", "oc_a"), ("small", "wc"), ("small", "oc_a")]
 
 
 # --- real Dask clusters ---
