@@ -3,14 +3,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "solver_flags.h"
-#include "cli.h"
+#include "arg_parser.h"
 #include "command_inputs.h"
-#include "compat_flags.h"
 #include "commands.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/ground_truth.h"
+#include "solver_flags.h"
 
 namespace dynslam::cli {
 
@@ -39,13 +38,14 @@ int RunBuild(int argc, char** argv) {
                    "(SPEC §3.5 start wc)",
                    "WC_SOLUTION.g2o");
   BuildFlags build_flags(&parser, BuildOptionTable());
-  CompatFlags compat(&parser);
+  CompatFlags compat_flags(&parser, CompatOptionTable());
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (ReportedProblem(compat.Finish())) return kExitBadInput;
+  Compat compat;
+  if (ReportedProblem(compat_flags.Finish(&compat))) return kExitBadInput;
   if (out_path.empty()) return ErrorExit("--out FILE is required", kExitBadInput);
   BuildOptions options;
   if (ReportedProblem(build_flags.Finish(&options))) return kExitBadInput;
-  compat.Apply(&options);
+  ApplyCompat(compat, &options);
   Formulation formulation;
   ParseFormulation(formulation_name, &formulation);
   if (!start_path.empty() && !IsObjectCentric(formulation)) {
@@ -53,7 +53,7 @@ int RunBuild(int argc, char** argv) {
   }
 
   ReadOptions read_options;
-  compat.Apply(&read_options);
+  ApplyCompat(compat, &read_options);
   Expected<Graph> front_end = ReadGraph(front_end_path, read_options);
   if (!front_end.ok()) return ErrorExit(front_end.error(), kExitBadInput);
   std::optional<GroundTruth> gt;

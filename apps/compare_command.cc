@@ -2,8 +2,8 @@
 //
 // Builds every formulation from one front-end file (identical data, SPEC §3), solves each the
 // same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side,
-// then draws the convergence (Fig. 4) and trajectory plots with scripts/plot_*.py. Without ground
-// truth it tabulates the solves alone.
+// then draws the convergence (Fig. 4), trajectory and error plots (scripts/plot_compare.py).
+// Without ground truth it tabulates the solves alone.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -19,14 +19,12 @@
 #include <sstream>
 #include <vector>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "command_inputs.h"
 #include "commands.h"
-#include "compat_flags.h"
 #include "dynslam/compare.h"
 #include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
-#include "export_flags.h"
 #include "solver_flags.h"
 #include "stop_signals.h"
 
@@ -58,42 +56,24 @@ void PrintProgress(const CompareRow& r, size_t done, size_t total, double elapse
 }
 
 // Runs args[0] (an absolute path, no shell: paths may hold spaces or quotes) with stdin from
-// /dev/null and stdout and stderr captured in *output. Returns its exit code, or -1 when it could
-// not be started or did not exit normally. posix_spawn, not fork: the child does not copy the
-// page tables of a process that may hold a whole sequence's solve (glibc spawns with vfork
-// semantics and reports a failed exec as an error here).
-int RunCaptured(const std::vector<std::string>& args, std::string* output) {
+// /dev/null and its output on stderr (stdout holds the tables). Returns its exit code, or -1
+// when it could not be started (glibc reports a failed exec here) or did not exit normally.
+// posix_spawn, not fork: the child does not copy the page tables of a process that may hold a
+// whole sequence's solve.
+int RunWithOutputOnStderr(const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
   argv.push_back(nullptr);
-  int pipe_fds[2];
-  if (pipe2(pipe_fds, O_CLOEXEC) != 0) return -1;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::fflush(stdout);
   std::fflush(stderr);
   pid_t pid = -1;
   const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    close(pipe_fds[0]);
-    close(pipe_fds[1]);
-    return -1;
-  }
-  close(pipe_fds[1]);
-  char buffer[4096];
-  for (;;) {
-    const ssize_t n = read(pipe_fds[0], buffer, sizeof(buffer));
-    if (n > 0) {
-      output->append(buffer, static_cast<size_t>(n));
-    } else if (n == 0 || errno != EINTR) {
-      break;
-    }
-  }
-  close(pipe_fds[0]);
+  if (spawned != 0) return -1;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return -1;
@@ -101,75 +81,28 @@ int RunCaptured(const std::vector<std::string>& args, std::string* output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// The last non-blank line of a script's output: the error message of a failed script.
-std::string LastLine(const std::string& text) {
-  const size_t end = text.find_last_not_of(" \t\r\n");
-  if (end == std::string::npos) return "no message";
-  const size_t newline = text.find_last_of('\n', end);
-  const size_t start = newline == std::string::npos ? 0 : newline + 1;
-  return text.substr(start, end + 1 - start);
-}
-
-// DIR/convergence.png (every formulation's convergence.csv on one figure) and DIR/trajectory.png
-// (every formulation's cameras and object poses with the ground truth). Plots are a convenience:
-// a missing python3 or matplotlib, or a failing script, is one warning line, not a failure.
-void DrawPlots(const std::string& out_dir, const std::vector<CompareRow>& rows, const std::string& gt_path,
-               const std::string& title) {
-  const std::string python = "/usr/bin/python3";
-  if (access(python.c_str(), X_OK) != 0) {
-    std::cerr << "warning: no " << python << ", so no convergence.png or trajectory.png\n";
-    return;
-  }
-  std::string output;
-  if (RunCaptured({python, "-c", "import matplotlib"}, &output) != 0) {
-    std::cerr << "warning: " << python << " cannot import matplotlib (Debian: python3-matplotlib), "
-              << "so no convergence.png or trajectory.png\n";
-    return;
-  }
+// DIR/convergence.png, DIR/trajectory.png and, with ground truth, DIR/errors.png, drawn by
+// scripts/plot_compare.py. Plots are a convenience: no python3, matplotlib or script, or a plot
+// that fails, is a warning line (the script writes its own), not a failure.
+void DrawPlots(const std::string& out_dir, const std::vector<CompareRow>& rows,
+               const std::string& gt_path, const std::string& title) {
   const char* from_environment = std::getenv("DYNSLAM_SCRIPTS_DIR");
-  const fs::path scripts = from_environment && *from_environment ? from_environment
-                                                                 : DYNSLAM_SCRIPTS_DIR;
+  const fs::path script = fs::path(from_environment && *from_environment ? from_environment
+                                                                         : DYNSLAM_SCRIPTS_DIR) /
+                          "plot_compare.py";
   std::error_code ec;
-  const fs::path out = fs::absolute(out_dir, ec);  // absolute: no path can look like an option
-  std::vector<std::string> labels;
-  for (const CompareRow& row : rows) labels.push_back(FormulationName(row.formulation));
-
-  auto draw = [&](const char* script, const char* image, const char* file_in_folder,
-                  std::vector<std::string> extra) {
-    const fs::path script_path = scripts / script;
-    if (!fs::is_regular_file(script_path, ec)) {
-      std::cerr << "warning: no " << script_path.string() << " (DYNSLAM_SCRIPTS_DIR), so no "
-                << image << "\n";
-      return;
-    }
-    std::vector<std::string> args = {python, script_path.string()};
-    for (const std::string& label : labels) {
-      const fs::path folder = out / label;
-      args.push_back((*file_in_folder ? folder / file_in_folder : folder).string());
-    }
-    args.push_back("--labels");
-    args.insert(args.end(), labels.begin(), labels.end());
-    args.insert(args.end(), extra.begin(), extra.end());
-    args.push_back("--out");
-    args.push_back((out / image).string());
-    output.clear();
-    const int code = RunCaptured(args, &output);
-    if (code != 0) {
-      std::cerr << "warning: " << script << " failed (exit " << code << "), so no " << image
-                << ": " << LastLine(output) << "\n";
-      return;
-    }
-    std::fprintf(stderr, "[compare] wrote %s\n", (out / image).string().c_str());
-  };
-  draw("plot_convergence.py", "convergence.png", "convergence.csv",
-       {"--title", title + ": convergence (Fig. 4)"});
-  std::vector<std::string> trajectory_args = {"--title", title + ": trajectories (top view, x-z)"};
-  if (!gt_path.empty()) {  // drawn dashed
-    trajectory_args.insert(trajectory_args.end(), {"--gt", fs::absolute(gt_path, ec).string()});
+  if (!fs::is_regular_file(script, ec)) {
+    std::cerr << "warning: no " << script.string() << " (DYNSLAM_SCRIPTS_DIR), so no plots\n";
+    return;
   }
-  draw("plot_trajectory.py", "trajectory.png", "", trajectory_args);
-  if (!gt_path.empty()) {
-    draw("plot_errors.py", "errors.png", "errors.csv", {"--title", title + ": errors per frame"});
+  // Absolute paths and --title=: no argument can look like an option.
+  std::vector<std::string> args = {"/usr/bin/python3", script.string(),
+                                   fs::absolute(out_dir, ec).string(), "--title=" + title};
+  if (!gt_path.empty()) args.push_back("--gt=" + fs::absolute(gt_path, ec).string());
+  args.push_back("--labels");
+  for (const CompareRow& row : rows) args.push_back(FormulationName(row.formulation));
+  if (RunWithOutputOnStderr(args) == -1) {
+    std::cerr << "warning: could not run /usr/bin/python3 " << script.string() << ", so no plots\n";
   }
 }
 
@@ -217,8 +150,7 @@ int RunCompare(int argc, char** argv) {
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
       "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png,\n"
-      "DIR/trajectory.png and, with --gt, DIR/errors.png (scripts/plot_convergence.py,\n"
-      "scripts/plot_trajectory.py, scripts/plot_errors.py).\n"
+      "DIR/trajectory.png and, with --gt, DIR/errors.png (scripts/plot_compare.py).\n"
       "--max-time limits each formulation's solve. SIGINT (Ctrl-C) or SIGTERM stops the current\n"
       "solve after its step, writes its outputs and the tables of what finished (no plots), and\n"
       "exits 130 or 143; a second signal quits at once.");
@@ -254,13 +186,13 @@ int RunCompare(int argc, char** argv) {
                  "it again: a long compare that was stopped goes on from the next formulation");
   BuildFlags build_flags(&parser, BuildOptionTable());
   SolverFlags solver_flags(&parser, SolverOptionTable());
-  CompatFlags compat(&parser);
-  ExportFlags export_flags(&parser);
+  CompatFlags compat_flags(&parser, CompatOptionTable());
+  ExportFlags export_flags(&parser, ExportOptionTable());
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
-  if (ReportedProblem(compat.Finish())) return kExitBadInput;
-  if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   CompareOptions options;
+  if (ReportedProblem(export_flags.Finish(&options.export_options))) return kExitBadInput;
+  if (ReportedProblem(compat_flags.Finish(&options.compat))) return kExitBadInput;
+  if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   options.formulations.clear();
   if (!ParseFormulationList(formulation_list, &options.formulations)) return kExitBadInput;
   options.covariance_kinds = covariance_kinds;
@@ -280,19 +212,14 @@ int RunCompare(int argc, char** argv) {
   }
   if (ReportedProblem(build_flags.Finish(&options.build))) return kExitBadInput;
   if (ReportedProblem(solver_flags.Finish(&options.solver))) return kExitBadInput;
-  options.compat = compat.value();
   PrintProgressAfterOneSecond(&options.solver);
   StopOnSignals(&options.solver);
   options.out_dir = out_dir;
   options.front_end_name = fs::path(front_end_path).filename().string();
-  SolveOutputs exported;
-  export_flags.Apply(&exported);
-  options.export_formats = exported.export_formats;
-  options.export_rate_hz = exported.export_rate_hz;
   PrintProgressAsItGoes(&options);
 
   ReadOptions read_options;
-  compat.Apply(&read_options);
+  ApplyCompat(options.compat, &read_options);
   Expected<Graph> front_end = ReadGraph(front_end_path, read_options);
   if (!front_end.ok()) return ErrorExit(front_end.error(), kExitBadInput);
   std::optional<GroundTruth> gt;

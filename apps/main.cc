@@ -3,7 +3,7 @@
 #include <cstring>
 #include <iostream>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "commands.h"
 #include "huge_page_heap.h"
 #include "inline_openmp_regions.h"
@@ -24,7 +24,7 @@ constexpr Command kCommands[] = {
      dynslam::cli::RunCompare},
     {"metrics", "score a solved graph file against ground truth (SPEC §5)",
      dynslam::cli::RunMetrics},
-    {"options", "print every solver, build and simulation option (docs/OPTIONS.md)",
+    {"options", "print every solver, build, simulation, export and compatibility option (docs/OPTIONS.md)",
      dynslam::cli::RunOptions},
     {"simulate", "simulate a front end on KITTI Tracking ground truth (or a synthetic scene)",
      dynslam::cli::RunSimulate},

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "commands.h"
 #include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "command_inputs.h"
 #include "commands.h"
 #include "dynslam/file_io.h"

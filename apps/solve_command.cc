@@ -1,13 +1,10 @@
 // dynslam solve GRAPH --out DIR [--gt GT] [solver options]   (SPEC §4)
 #include <cstdio>
-#include <iostream>
 #include <optional>
 #include <string>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "command_inputs.h"
-#include "compat_flags.h"
-#include "export_flags.h"
 #include "commands.h"
 #include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
@@ -21,39 +18,6 @@
 
 namespace dynslam::cli {
 namespace {
-
-void PrintSummary(const SolveOutputs& outputs, const std::string& out_dir) {
-  const SolveReport& r = *outputs.report;
-  std::string source;
-  std::printf("%s (%s)\n", outputs.input.c_str(),
-              FormulationLabelOf(*outputs.solved, &source).c_str());
-  std::printf("variables:");
-  for (size_t i = 0; i < kAllRoles.size(); ++i) {
-    if (r.variables_by_role[i] > 0) {
-      std::printf(" %s %lld", RoleName(kAllRoles[i]), static_cast<long long>(r.variables_by_role[i]));
-    }
-  }
-  if (r.unused_variables > 0) std::printf(" (unused, held constant: %lld)", static_cast<long long>(r.unused_variables));
-  std::printf("\nedges:");
-  for (const EdgeKind kind : kAllEdgeKinds) {
-    const int64_t n = r.edges_by_kind[static_cast<int>(kind)];
-    if (n > 0) std::printf(" %s %lld", EdgeKindName(kind), static_cast<long long>(n));
-  }
-  std::printf("\ncost: %.12g -> %.12g\n", r.initial_cost, r.final_cost);
-  std::printf("iterations: %d accepted of %d steps, %d extrapolations and %d gauge moves; %s (%s)\n",
-              r.iterations, r.steps, r.extrapolations, r.gauge_moves, r.termination.c_str(),
-              r.termination_detail.c_str());
-  std::printf("time: %.3f s total = %.3f s set-up + %.3f s minimiser (%.3f s evaluation, %.3f s linear solves)\n",
-              r.time_total_s, r.time_preprocessor_s, r.time_minimizer_s, r.time_evaluation_s,
-              r.time_linear_solver_s);
-  for (const std::string& warning : outputs.warnings) std::printf("warning: %s\n", warning.c_str());
-  for (const std::string& warning : r.warnings) std::printf("warning: %s\n", warning.c_str());
-  if (const CovarianceReport* c = outputs.covariance; c != nullptr && c->weak_directions.empty()) {
-    std::printf("covariances: %zu variables in %.3f s (covariances.csv)\n", c->marginals.size(),
-                c->time_s);
-  }
-  std::printf("outputs: %s\n", out_dir.c_str());
-}
 
 // The error printed when the covariances could not be computed (the other outputs are written
 // all the same).
@@ -106,11 +70,13 @@ int RunSolve(int argc, char** argv) {
                  "check the other options and exit (0, or 2 naming the problem) without reading "
                  "GRAPH or writing anything (what a sweep does before it starts)");
   SolverFlags solver_flags(&parser, SolverOptionTable());
-  CompatFlags compat(&parser);
-  ExportFlags export_flags(&parser);
+  CompatFlags compat_flags(&parser, CompatOptionTable());
+  ExportFlags export_flags(&parser, ExportOptionTable());
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
-  if (ReportedProblem(compat.Finish())) return kExitBadInput;
-  if (ReportedProblem(export_flags.Finish())) return kExitBadInput;
+  Compat compat;
+  if (ReportedProblem(compat_flags.Finish(&compat))) return kExitBadInput;
+  ExportOptions exported;
+  if (ReportedProblem(export_flags.Finish(&exported))) return kExitBadInput;
   SolverOptions options;
   if (ReportedProblem(solver_flags.Finish(&options))) return kExitBadInput;
   std::vector<CovarianceKind> kinds;
@@ -125,7 +91,7 @@ int RunSolve(int argc, char** argv) {
   ReadOptions read_options;
   read_options.skip_unknown_tags = skip_unknown;
   read_options.repair_information = repair_information;
-  compat.Apply(&read_options);
+  ApplyCompat(compat, &read_options);
   ReadReport read_report;
   Expected<Graph> graph = ReadGraph(graph_path, read_options, &read_report);
   if (!graph.ok()) return ErrorExit(graph.error(), kExitBadInput);
@@ -142,10 +108,9 @@ int RunSolve(int argc, char** argv) {
     outputs.warnings.push_back("skipped " + std::to_string(count) + " lines with unknown tag " + tag);
   }
 
-  std::string source;
-  compat.Apply(FormulationLabelOf(*graph, &source) == "wc", &options);
-  if (compat.any()) {
-    outputs.warnings.push_back("--compat " + compat.Describe() + " (SPEC §7, §3.6)");
+  ApplyCompat(compat, FormulationLabelOf(*graph) == "wc", &options);
+  if (const std::string items = CompatText(compat); items != "none") {
+    outputs.warnings.push_back("--compat " + items + " (SPEC §7, §3.6)");
   }
   Expected<SolveReport> report = Solve(options, &*graph);
   if (!report.ok()) {
@@ -155,7 +120,7 @@ int RunSolve(int argc, char** argv) {
   }
   outputs.solved = &*graph;
   outputs.report = &*report;
-  export_flags.Apply(&outputs);
+  outputs.export_options = exported;
   if (ground_truth) {
     outputs.ground_truth = &*ground_truth;
     outputs.metrics = ComputeMetrics(*graph, *ground_truth);
@@ -174,18 +139,8 @@ int RunSolve(int argc, char** argv) {
   if (Status status = WriteSolveOutputs(out_dir, outputs); !status.ok()) {
     return ErrorExit(status.error(), kExitFailed);
   }
-  PrintSummary(outputs, out_dir);
-  if (ceres_report) std::printf("%s", report->ceres_report.c_str());
-  if (outputs.metrics) {
-    const Metrics& m = *outputs.metrics;
-    std::printf("metrics (SPEC §5): camera %.4f deg %.4f m over %lld pairs; object motion %.4f deg "
-                "%.4f m over %lld motions; object pose %.4f deg %.4f m over %lld pairs\n",
-                m.camera.mean_rot_deg, m.camera.mean_trans_m,
-                static_cast<long long>(m.camera.count), m.object_motion.mean_rot_deg,
-                m.object_motion.mean_trans_m, static_cast<long long>(m.object_motion.count),
-                m.object_pose.mean_rot_deg, m.object_pose.mean_trans_m,
-                static_cast<long long>(m.object_pose.count));
-  }
+  std::fputs(SolveSummaryText(outputs, out_dir).c_str(), stdout);
+  if (ceres_report) std::fputs(report->ceres_report.c_str(), stdout);
   if (!report->usable) {
     return ErrorExit("the solve failed: " + report->termination_detail, kExitFailed);
   }

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cli.h"
+#include "arg_parser.h"
 #include "commands.h"
 #include "dynslam/verify.h"
 

@@ -4,9 +4,9 @@
 // and, every `--cost-every` steps, the cost per edge kind. Then names the variables that move
 // last: those farthest from the final values once the cost is within 1e-6 of the final cost.
 //
-//   convergence_probe GRAPH [--SOLVER-OPTION VALUE ...] [--cost-every N] [--top N]
+//   convergence_probe GRAPH [solver options] [--cost-every N] [--top N]
 //
-// (solver options as `dynslam solve` spells them, docs/OPTIONS.md; switches take on or off)
+// (solver options as `dynslam solve` spells them, docs/OPTIONS.md; --help lists them)
 //
 // Prints CSV blocks to stdout: "steps" (one row per linear solve or extrapolation), "gap" (per
 // accepted step and role: RMS rotation [rad] and translation/position [m] distance to the final
@@ -15,12 +15,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "arg_parser.h"
 #include "dynslam/graph_io.h"
 #include "dynslam/se3.h"
 #include "dynslam/solver.h"
@@ -54,31 +55,6 @@ struct Args {
   int cost_every = 10;
   int top = 15;
 };
-
-// Any solver option of the table as --flag-name VALUE, and the probe's own two.
-bool ParseArgs(int argc, char** argv, Args* args) {
-  std::vector<std::pair<std::string, std::string>> given;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--cost-every" && has_value) {
-      args->cost_every = std::max(1, std::atoi(argv[++i]));
-    } else if (a == "--top" && has_value) {
-      args->top = std::atoi(argv[++i]);
-    } else if (a.rfind("--", 0) == 0 && has_value) {
-      given.emplace_back(a.substr(2), argv[++i]);
-    } else if (args->graph.empty() && a.rfind("--", 0) != 0) {
-      args->graph = a;
-    } else {
-      return false;
-    }
-  }
-  const auto problem = ApplyOptions(SolverOptionTable(), given,
-                                    [](const std::string& name) { return "--" + FlagName(name); },
-                                    &args->options);
-  if (problem) std::fprintf(stderr, "%s\n", problem->c_str());
-  return !problem && !args->graph.empty();
-}
 
 void PrintSteps(const std::vector<StepRecord>& rows) {
   std::printf("# steps\nstep,accepted,lambda,cost,trial_cost,rho,time_s,step_norm\n");
@@ -247,12 +223,28 @@ int main(int argc, char** argv) {
 #ifdef DYNSLAM_INLINE_OPENMP_REGIONS
   dynslam::InlineOneThreadOpenMpRegions();  // CHOLMOD's regions as `dynslam solve` runs them
 #endif
+  using dynslam::cli::ArgParser;
   dynslam::Args args;
-  if (!dynslam::ParseArgs(argc, argv, &args)) {
-    std::fprintf(stderr,
-                 "usage: convergence_probe GRAPH [--SOLVER-OPTION VALUE ...] [--cost-every N] "
-                 "[--top N]\n");
-    return 2;
+  ArgParser parser("convergence_probe GRAPH [solver options] [--cost-every N] [--top N]",
+                   "Where a solve's steps go (docs/CONVERGENCE.md): CSV blocks on stdout.");
+  parser.AddPositional("GRAPH", &args.graph, "graph file (SPEC §1)");
+  auto integer = [](int* target, int64_t min) {
+    return [target, min](const std::string& text) {
+      int64_t value = 0;
+      std::optional<std::string> problem = dynslam::ParseInteger(text, min, 1 << 30, &value);
+      if (!problem) *target = static_cast<int>(value);
+      return problem;
+    };
+  };
+  parser.AddValue("cost-every", "N", "the cost per edge kind every N accepted steps",
+                  std::to_string(args.cost_every), integer(&args.cost_every, 1));
+  parser.AddValue("top", "N", "how many of the variables that move last to name",
+                  std::to_string(args.top), integer(&args.top, 0));
+  dynslam::cli::TableFlags<dynslam::SolverOptions> solver_flags(&parser,
+                                                               dynslam::SolverOptionTable());
+  if (std::optional<int> exit_code = parser.Parse(argc, argv, 1)) return *exit_code;
+  if (dynslam::cli::ReportedProblem(solver_flags.Finish(&args.options))) {
+    return dynslam::cli::kExitBadInput;
   }
   return dynslam::Run(args);
 }

@@ -41,23 +41,13 @@ def read_rows(path):
     return out
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("csv", nargs="+", help="convergence.csv files")
-    parser.add_argument("--labels", nargs="*", help="one label per file (default: the paths)")
-    parser.add_argument("--title", default="Convergence (Fig. 4)")
-    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
-    args = parser.parse_args()
-    labels = args.labels or args.csv
-    if len(labels) != len(args.csv):
-        sys.exit("--labels needs one label per file")
-
+def draw(paths, labels, title, out):
+    """The figure of the convergence.csv files `paths`, one curve per label, into `out`."""
     fig = plt.figure(figsize=(8, 9))
     top = fig.add_subplot(3, 1, 1)
     bottom = fig.add_subplot(3, 1, 2, sharex=top)
     timed = fig.add_subplot(3, 1, 3)
-    for path, label in zip(args.csv, labels):
+    for path, label in zip(paths, labels):
         rows = read_rows(path)
         if not rows:
             continue
@@ -80,7 +70,7 @@ def main():
                     ".-", color=color, label=label)
     top.set_yscale("log")
     top.set_ylabel("cost ½χ² (o accepted, x rejected trial)")
-    top.set_title(args.title)
+    top.set_title(title)
     top.legend()
     bottom.set_yscale("symlog", linthresh=1e-6)
     bottom.set_ylabel("cost change per step")
@@ -90,7 +80,21 @@ def main():
     timed.set_xlabel("time since the minimiser started (s)")
     bottom.axhline(0, color="black", linewidth=0.5)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=120)
+    fig.savefig(out, dpi=120)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("csv", nargs="+", help="convergence.csv files")
+    parser.add_argument("--labels", nargs="*", help="one label per file (default: the paths)")
+    parser.add_argument("--title", default="Convergence (Fig. 4)")
+    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
+    args = parser.parse_args()
+    labels = args.labels or args.csv
+    if len(labels) != len(args.csv):
+        sys.exit("--labels needs one label per file")
+    draw(args.csv, labels, args.title, args.out)
     print(args.out)
 
 

@@ -37,20 +37,10 @@ def read_means(path):
     return {q: {k: (r / n, t / n) for k, (r, t, n) in frames.items()} for q, frames in sums.items()}
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("csv", nargs="+", help="errors.csv files")
-    parser.add_argument("--labels", nargs="*", help="one label per file (default: the paths)")
-    parser.add_argument("--title", default="Errors per frame")
-    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
-    args = parser.parse_args()
-    labels = args.labels or args.csv
-    if len(labels) != len(args.csv):
-        sys.exit("--labels needs one label per file")
-
+def draw(paths, labels, title, out):
+    """The figure of the errors.csv files `paths`, one line per label, into `out`."""
     fig, axes = plt.subplots(len(QUANTITIES), 2, sharex=True, figsize=(10, 8), squeeze=False)
-    for path, label in zip(args.csv, labels):
+    for path, label in zip(paths, labels):
         means = read_means(path)
         for row, (quantity, _) in enumerate(QUANTITIES):
             frames = sorted(means.get(quantity, {}))
@@ -63,9 +53,23 @@ def main():
     for column in (0, 1):
         axes[-1][column].set_xlabel("frame")
     axes[0][0].legend()
-    fig.suptitle(args.title)
+    fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=120)
+    fig.savefig(out, dpi=120)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("csv", nargs="+", help="errors.csv files")
+    parser.add_argument("--labels", nargs="*", help="one label per file (default: the paths)")
+    parser.add_argument("--title", default="Errors per frame")
+    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
+    args = parser.parse_args()
+    labels = args.labels or args.csv
+    if len(labels) != len(args.csv):
+        sys.exit("--labels needs one label per file")
+    draw(args.csv, labels, args.title, args.out)
     print(args.out)
 
 

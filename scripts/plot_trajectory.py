@@ -150,22 +150,12 @@ def by_object(objects):
     return paths
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("dirs", nargs="+", help="solve output directories (dynslam solve --out)")
-    parser.add_argument("--labels", nargs="*", help="one label per directory (default: the paths)")
-    parser.add_argument("--gt", help="ground-truth file (SPEC §2), drawn dashed")
-    parser.add_argument("--title", default="Trajectories (top view, x–z)")
-    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
-    args = parser.parse_args()
-    labels = args.labels or args.dirs
-    if len(labels) != len(args.dirs):
-        sys.exit("--labels needs one label per directory")
-
+def draw(dirs, labels, gt_path, title, out):
+    """The top view of the solve output directories `dirs` (and the ground truth at `gt_path`,
+    when given) into `out`."""
     # Read everything before plotting so that bad input stops the script before any drawing.
-    runs = [(label, *read_solve_dir(directory)) for directory, label in zip(args.dirs, labels)]
-    gt = read_ground_truth(args.gt) if args.gt else None
+    runs = [(label, *read_solve_dir(directory)) for directory, label in zip(dirs, labels)]
+    gt = read_ground_truth(gt_path) if gt_path else None
 
     try:
         import matplotlib
@@ -213,13 +203,28 @@ def main():
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("z (m), forward")
-    ax.set_title(args.title)
+    ax.set_title(title)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     fig.tight_layout()
     try:
-        fig.savefig(args.out, dpi=120)
+        fig.savefig(out, dpi=120)
     except (OSError, ValueError) as error:
-        fail(args.out, 0, f"cannot write the image ({error})")
+        fail(out, 0, f"cannot write the image ({error})")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("dirs", nargs="+", help="solve output directories (dynslam solve --out)")
+    parser.add_argument("--labels", nargs="*", help="one label per directory (default: the paths)")
+    parser.add_argument("--gt", help="ground-truth file (SPEC §2), drawn dashed")
+    parser.add_argument("--title", default="Trajectories (top view, x–z)")
+    parser.add_argument("--out", required=True, help="image file (.png, .pdf, .svg)")
+    args = parser.parse_args()
+    labels = args.labels or args.dirs
+    if len(labels) != len(args.dirs):
+        sys.exit("--labels needs one label per directory")
+    draw(args.dirs, labels, args.gt, args.title, args.out)
     print(args.out)
 
 

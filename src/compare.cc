@@ -218,8 +218,7 @@ std::optional<CompareRow> FinishedSolveIn(const fs::path& dir, Formulation formu
   SolveOutputs exported;
   exported.solved = &*solved;
   exported.ground_truth = gt;
-  exported.export_formats = run.export_formats;
-  exported.export_rate_hz = run.export_rate_hz;
+  exported.export_options = run.export_options;
   if (!WriteExportedTrajectories(dir.string(), exported).ok()) return std::nullopt;
   if (solved_out != nullptr) *solved_out = std::move(*solved);
   return row;
@@ -236,8 +235,7 @@ Status WriteOutputs(const fs::path& dir, const Graph& solved, const BuildReport&
   outputs.warnings = build_report.warnings;
   outputs.ground_truth = gt;
   outputs.metrics = row->metrics;
-  outputs.export_formats = run.export_formats;
-  outputs.export_rate_hz = run.export_rate_hz;
+  outputs.export_options = run.export_options;
   if (!gt) {
     outputs.warnings.push_back(row->formulation == Formulation::kWorldCentric
                                    ? "no ground truth: no metrics"

@@ -212,11 +212,11 @@ std::string SummaryJson(const SolveOutputs& outputs) {
 }
 
 Status WriteExportedTrajectories(const std::string& dir, const SolveOutputs& outputs) {
-  if (outputs.export_formats.empty()) return Status::Ok();
+  if (outputs.export_options.formats.empty()) return Status::Ok();
   const std::vector<Trajectory> trajectories =
       ExportedTrajectories(*outputs.solved, outputs.ground_truth);
-  for (const TrajectoryFormat format : outputs.export_formats) {
-    if (Status s = WriteTrajectories(dir, trajectories, format, outputs.export_rate_hz); !s.ok()) {
+  for (const TrajectoryFormat format : outputs.export_options.formats) {
+    if (Status s = WriteTrajectories(dir, trajectories, format, outputs.export_options.rate_hz); !s.ok()) {
       return s;
     }
   }

@@ -1,6 +1,7 @@
 #include "dynslam/trajectory_export.h"
 
 #include <filesystem>
+#include <sstream>
 
 #include "dynslam/file_io.h"
 #include "dynslam/metrics.h"
@@ -41,6 +42,41 @@ bool ParseTrajectoryFormat(const std::string& text, TrajectoryFormat* format) {
     }
   }
   return false;
+}
+
+const OptionTable<ExportOptions>& ExportOptionTable() {
+  static const OptionTable<ExportOptions> table = [] {
+    Option<ExportOptions> formats = Declare<ExportOptions>(
+        "export", "output", OptionType::kText,
+        "also write the camera's and each object's trajectory, estimated and (with --gt) true, "
+        "for evo: tum, kitti or tum,kitti (DIR/camera_estimate.tum.txt, "
+        "DIR/object_J_ground_truth.kitti.txt, ...)",
+        "FORMATS");
+    formats.get = [](const ExportOptions& options) {
+      std::string text;
+      for (const TrajectoryFormat format : options.formats) {
+        text += (text.empty() ? "" : ",") + std::string(TrajectoryFormatName(format));
+      }
+      return text;
+    };
+    formats.set = [](const std::string& text,
+                     ExportOptions* options) -> std::optional<std::string> {
+      std::vector<TrajectoryFormat> parsed;
+      std::stringstream list(text);
+      for (std::string item; std::getline(list, item, ',');) {
+        if (!ParseTrajectoryFormat(item, &parsed.emplace_back())) {
+          return "unknown format '" + item + "' (tum, kitti)";
+        }
+      }
+      options->formats = std::move(parsed);
+      return std::nullopt;
+    };
+    return OptionTable<ExportOptions>{
+        formats, Real<ExportOptions>("export_rate", "output", &ExportOptions::rate_hz,
+                                     "frames per second of the TUM timestamps (frame / rate)",
+                                     1e-6, 1e9)};
+  }();
+  return table;
 }
 
 std::vector<Trajectory> ExportedTrajectories(const Graph& solved, const GroundTruth* ground_truth) {

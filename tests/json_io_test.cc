@@ -1,10 +1,13 @@
 // JSON at the file boundary (src/json_io.h, nlohmann-json): vertex ids above 2^53 survive
 // summary.json, output does not depend on the C locale, \u escapes decode to UTF-8, and what
-// JSON forbids (NaN, trailing commas) is an error naming the file and line.
+// JSON forbids (NaN, trailing commas) is an error naming the file and line; beside it, the
+// summary `dynslam solve` prints.
 #include "src/json_io.h"
 
+#include <algorithm>
 #include <clocale>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -168,6 +171,32 @@ TEST(JsonIoTest, ASummaryReadsBackItsReportAndOptions) {
   SolverOptions other = solve.report.options_used;
   other.max_iterations += 1;
   EXPECT_NE(read->solver_options_json, SolverOptionsJson(other));
+}
+
+// What `dynslam solve` prints: the counts by kind and the costs of the report, the output
+// directory, and the metrics line only when there are metrics.
+TEST(SolveSummaryTextTest, NamesTheCountsCostsOutputsAndMetricsOfTheSolve) {
+  const SmallSolve solve = SolveSmallGraph();
+  SolveOutputs outputs;
+  outputs.input = "small.g2o";
+  outputs.solved = &solve.graph;
+  outputs.report = &solve.report;
+  const std::string text = SolveSummaryText(outputs, "out/dir");
+  EXPECT_EQ(text.rfind("small.g2o (", 0), 0u) << text;
+  EXPECT_NE(text.find("(unused, held constant: 1)\nedges: prior 1 odometry 1\n"), std::string::npos)
+      << text;
+  double initial = 0, final = 0;
+  ASSERT_EQ(std::sscanf(text.c_str() + text.find("cost: "), "cost: %lf -> %lf", &initial, &final), 2);
+  EXPECT_NEAR(initial, solve.report.initial_cost, 1e-11 * solve.report.initial_cost);
+  EXPECT_NEAR(final, solve.report.final_cost, 1e-11 * std::max(solve.report.final_cost, 1e-300));
+  const std::string last_line = "outputs: out/dir\n";
+  EXPECT_EQ(text.substr(text.size() - last_line.size()), last_line);
+  outputs.metrics = Metrics{};
+  outputs.metrics->camera.count = 3;
+  const std::string with_metrics = SolveSummaryText(outputs, "out/dir");
+  EXPECT_EQ(with_metrics.rfind(text, 0), 0u);
+  EXPECT_EQ(with_metrics.substr(text.size()), MetricsText(*outputs.metrics));
+  EXPECT_NE(MetricsText(*outputs.metrics).find("over 3 pairs"), std::string::npos);
 }
 
 TEST(JsonIoTest, ASummaryWithoutItsFieldsIsAnErrorNamingTheFile) {

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "dynslam/compat.h"
 #include "dynslam/formulation.h"
 #include "dynslam/simulate.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver_options.h"
+#include "dynslam/trajectory_export.h"
 #include "src/json_io.h"
 
 namespace dynslam {
@@ -38,6 +40,8 @@ TEST(OptionsTest, EveryNameIsOneSnakeCaseSpelling) {
   ExpectOneSpellingEach(SolverOptionTable());
   ExpectOneSpellingEach(BuildOptionTable());
   ExpectOneSpellingEach(SimulateOptionTable());
+  ExpectOneSpellingEach(ExportOptionTable());
+  ExpectOneSpellingEach(CompatOptionTable());
 }
 
 // Every option, written as text and read back, is the same value.
@@ -66,6 +70,37 @@ TEST(OptionsTest, TextReadsBackToTheSameValue) {
       EXPECT_EQ(option.get(read), option.get(options)) << option.name;
     }
   }
+}
+
+// `value`'s text of every option in `table`, set on default options and read back, is the same.
+template <typename Options>
+void ExpectEachReadsBack(const OptionTable<Options>& table, const Options& value) {
+  for (const Option<Options>& option : table) {
+    Options read;
+    ASSERT_EQ(option.set(option.get(value), &read), std::nullopt) << option.name;
+    EXPECT_EQ(option.get(read), option.get(value)) << option.name;
+  }
+}
+
+TEST(OptionsTest, ExportAndCompatibilityOptionsReadBackAndNameBadValues) {
+  ExportOptions exported;
+  ASSERT_EQ(ApplyOptions(ExportOptionTable(), {{"export", "tum,kitti"}, {"export_rate", "2.5"}},
+                         Plain, &exported),
+            std::nullopt);
+  EXPECT_EQ(exported.formats, (std::vector<TrajectoryFormat>{TrajectoryFormat::kTum,
+                                                             TrajectoryFormat::kKitti}));
+  EXPECT_EQ(exported.rate_hz, 2.5);
+  ExpectEachReadsBack(ExportOptionTable(), ExportOptions{});
+  ExpectEachReadsBack(ExportOptionTable(), exported);
+  EXPECT_EQ(ApplyOptions(ExportOptionTable(), {{"export", "tum,png"}}, Plain, &exported),
+            "export: unknown format 'png' (tum, kitti)");
+  for (const char* text : {"none", "dsc", "1,3", "dynosam", "dynosam:2,4"}) {
+    Compat compat;
+    ASSERT_EQ(ApplyOptions(CompatOptionTable(), {{"compat", text}}, Plain, &compat), std::nullopt);
+    ExpectEachReadsBack(CompatOptionTable(), compat);
+  }
+  Compat compat;
+  EXPECT_NE(ApplyOptions(CompatOptionTable(), {{"compat", "9"}}, Plain, &compat), std::nullopt);
 }
 
 TEST(OptionsTest, BadValuesNameTheProblem) {

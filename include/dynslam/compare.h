@@ -34,10 +34,9 @@ struct CompareOptions {
   std::vector<CovarianceKind> covariance;
   std::string covariance_kinds;
   // When set: each formulation's graph.g2o, solve outputs (SPEC §4) and build.txt in
-  // out_dir/<f>/, and the trajectory files of `export_formats` there.
+  // out_dir/<f>/, and the trajectory files of `export_options` there.
   std::string out_dir;
-  std::vector<TrajectoryFormat> export_formats;
-  double export_rate_hz = 10;
+  ExportOptions export_options;
   // With out_dir: a formulation whose finished solve is already there — the same built graph
   // and solver options, ended by convergence or the step limit — is read back, not solved again.
   bool resume = false;

@@ -10,6 +10,7 @@
 
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
+#include "dynslam/options.h"
 #include "dynslam/solver_options.h"
 
 namespace dynslam {
@@ -23,6 +24,9 @@ struct Compat {
 std::optional<std::string> ParseCompat(const std::string& text, Compat* compat);
 // "none", or the items on ("1,3 dynosam:2").
 std::string CompatText(const Compat& compat);
+
+// One option, `compat`, whose text is ParseCompat's (options.h).
+const OptionTable<Compat>& CompatOptionTable();
 
 void ApplyCompat(const Compat& compat, ReadOptions* options);
 void ApplyCompat(const Compat& compat, BuildOptions* options);

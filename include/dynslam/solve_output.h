@@ -37,8 +37,7 @@ struct SolveOutputs {
   // exported trajectories add the true ones.
   const GroundTruth* ground_truth = nullptr;
   // Trajectory files for evo (trajectory_export.h).
-  std::vector<TrajectoryFormat> export_formats;
-  double export_rate_hz = 10;  // KITTI Tracking's frame rate
+  ExportOptions export_options;
   // Marginal covariances (covariance.h), when asked for: covariances.csv and summary.json's
   // "covariance"; `covariance_kinds` is the request as given ("cameras,motions").
   const CovarianceReport* covariance = nullptr;
@@ -46,6 +45,14 @@ struct SolveOutputs {
   // With covariances and ground truth: summary.json's "consistency" (NEES, consistency.h).
   std::optional<Consistency> consistency;
 };
+
+// What `dynslam solve` prints once the outputs are in `out_dir`: the input and its formulation,
+// the variables by role and edges by kind, the costs, steps and termination, the times, the
+// warnings, the covariances' count and, with metrics, MetricsText.
+std::string SolveSummaryText(const SolveOutputs& outputs, const std::string& out_dir);
+
+// One line of SPEC §5's mean errors and their counts.
+std::string MetricsText(const Metrics& metrics);
 
 // summary.json's text (SPEC §4), without the trailing newline.
 std::string SummaryJson(const SolveOutputs& outputs);
@@ -55,7 +62,7 @@ std::string SummaryJson(const SolveOutputs& outputs);
 // order) when there are covariances; summary.json last.
 Status WriteSolveOutputs(const std::string& dir, const SolveOutputs& outputs);
 
-// Only the trajectory files of `outputs.export_formats` (none when empty), from `outputs.solved`
+// Only the trajectory files of `outputs.export_options` (none without formats), from `outputs.solved`
 // and `outputs.ground_truth`; part of WriteSolveOutputs.
 Status WriteExportedTrajectories(const std::string& dir, const SolveOutputs& outputs);
 

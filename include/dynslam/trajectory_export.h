@@ -15,6 +15,7 @@
 
 #include "dynslam/graph.h"
 #include "dynslam/ground_truth.h"
+#include "dynslam/options.h"
 #include "dynslam/pose.h"
 #include "dynslam/status.h"
 
@@ -24,6 +25,15 @@ enum class TrajectoryFormat { kTum, kKitti };
 // "tum", "kitti".
 const char* TrajectoryFormatName(TrajectoryFormat format);
 bool ParseTrajectoryFormat(const std::string& text, TrajectoryFormat* format);
+
+// Which trajectory files a solve writes beside its outputs.
+struct ExportOptions {
+  std::vector<TrajectoryFormat> formats;  // none: no trajectory files
+  double rate_hz = 10;                    // TUM timestamps are frame / rate_hz (KITTI Tracking's)
+};
+
+// The export options, `export` and `export_rate` (options.h).
+const OptionTable<ExportOptions>& ExportOptionTable();
 
 struct Trajectory {
   std::string name;              // "camera_estimate", "object_7_ground_truth", …

@@ -1,7 +1,8 @@
-// Command-line plumbing shared by the subcommands: option parsing with --help generated from
-// the declared options and their defaults, and the exit codes of docs/STYLE.md.
-#ifndef DYNSLAM_APPS_CLI_H_
-#define DYNSLAM_APPS_CLI_H_
+// Command-line plumbing of dynslam's executables (the `dynslam` command's subcommands, the
+// benchmark tools): option parsing with --help generated from the declared options and their
+// defaults, an option table's options as flags, and the exit codes of docs/STYLE.md.
+#ifndef DYNSLAM_CLI_ARG_PARSER_H_
+#define DYNSLAM_CLI_ARG_PARSER_H_
 
 #include <cstdint>
 #include <functional>
@@ -144,4 +145,4 @@ class TableFlags {
 
 }  // namespace dynslam::cli
 
-#endif  // DYNSLAM_APPS_CLI_H_
+#endif  // DYNSLAM_CLI_ARG_PARSER_H_

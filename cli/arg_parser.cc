@@ -1,4 +1,4 @@
-#include "cli.h"
+#include "arg_parser.h"
 
 #include <algorithm>
 #include <iostream>
