@@ -142,11 +142,13 @@ def _run_cells(client, sweep, out, cells, results, progress):
             except Exception as error:  # a worker lost more often than Dask allows
                 row = _failed_row(cell, error)
             _record(results, progress, row)
-        while simulating == 0 and waiting and len(running) < _worker_threads(client):
-            frontend, cell = waiting.pop()
-            submitted = _submit_cell(client, sweep, out, frontend, cell)
-            running[submitted] = cell
-            pending.add(submitted)
+        if simulating == 0:
+            threads = _worker_threads(client)  # a call to the scheduler: once per event
+            while waiting and len(running) < threads:
+                frontend, cell = waiting.pop()
+                submitted = _submit_cell(client, sweep, out, frontend, cell)
+                running[submitted] = cell
+                pending.add(submitted)
 
 
 def _record(results, progress, row):
