@@ -21,7 +21,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def read_rows(path):
-    with open(path, newline="") as f:
+    try:
+        f = open(path, newline="")
+    except OSError as error:
+        sys.exit(f"{path}: cannot read the file: {error.strerror or error}")
+    with f:
         rows = list(csv.DictReader(f))
     needed = {"step", "iteration", "lambda", "cost", "trial_cost", "accepted", "time_s"}
     if rows and not needed.issubset(rows[0].keys()):
@@ -80,7 +84,10 @@ def draw(paths, labels, title, out):
     timed.set_xlabel("time since the minimiser started (s)")
     bottom.axhline(0, color="black", linewidth=0.5)
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    try:
+        fig.savefig(out, dpi=120)
+    except (OSError, ValueError) as error:
+        sys.exit(f"{out}: cannot write the image ({error})")
 
 
 def main():

@@ -22,7 +22,11 @@ QUANTITIES = [("camera", "camera"), ("object_motion", "object motion, mean over 
 def read_means(path):
     """{quantity: {frame: (mean rot_deg, mean trans_m)}} from an errors.csv."""
     sums = defaultdict(lambda: defaultdict(lambda: [0.0, 0.0, 0]))
-    with open(path, newline="") as f:
+    try:
+        f = open(path, newline="")
+    except OSError as error:
+        sys.exit(f"{path}: cannot read the file: {error.strerror or error}")
+    with f:
         reader = csv.DictReader(f)
         if reader.fieldnames != ["quantity", "object", "frame", "rot_deg", "trans_m"]:
             sys.exit(f"{path}: not an errors.csv (quantity,object,frame,rot_deg,trans_m)")
@@ -55,7 +59,10 @@ def draw(paths, labels, title, out):
     axes[0][0].legend()
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    try:
+        fig.savefig(out, dpi=120)
+    except (OSError, ValueError) as error:
+        sys.exit(f"{out}: cannot write the image ({error})")
 
 
 def main():
