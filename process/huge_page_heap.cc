@@ -59,10 +59,13 @@ HugePageHeap AdviseHugePagesForTheHeap(size_t reserve_bytes) {
     return RestoreMallocAndNot("the heap cannot grow by the reserve");
   }
   mallopt(M_TRIM_THRESHOLD, -1);  // keep the heap's top (and its advice) when blocks are freed
+  // The reserve starts where the heap's old top chunk did, which may be below `before`: advise
+  // from the reserve's own first 2 MiB boundary, where a later large block will start too.
+  const uintptr_t first = reinterpret_cast<uintptr_t>(block);
   std::free(block);
 
   HugePageHeap heap;
-  heap.begin = (before + kHugePage - 1) & ~(kHugePage - 1);
+  heap.begin = (first + kHugePage - 1) & ~(kHugePage - 1);
   heap.end = after & ~(kHugePage - 1);
   if (madvise(reinterpret_cast<void*>(heap.begin), heap.end - heap.begin, MADV_HUGEPAGE) != 0) {
     return RestoreMallocAndNot(

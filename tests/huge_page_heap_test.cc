@@ -66,6 +66,21 @@ void AdvisedHeapChild() {
   std::_Exit(0);
 }
 
+// The same after small blocks have grown the heap until a 2 MiB boundary falls inside its top
+// chunk (the free space at its end, where the reserve will start): then the reserve begins below
+// the heap's end, and the advised range must begin at the reserve's first boundary, not at the
+// one after the heap's end. Where the heap starts is random (ASLR); this makes the case certain.
+void AdvisedHeapFromATopChunkAcrossABoundaryChild() {
+  for (int i = 0;; ++i) {
+    if (i == 4096) std::_Exit(7);
+    const auto block = reinterpret_cast<uintptr_t>(std::malloc(4000));
+    const uintptr_t top_chunk = block + 4000, heap_end = reinterpret_cast<uintptr_t>(sbrk(0));
+    if (block == 0) std::_Exit(8);
+    if (top_chunk / (2 * kMiB) < heap_end / (2 * kMiB)) break;
+  }
+  AdvisedHeapChild();
+}
+
 void HeapThatCannotGrowChild() {
   rlimit limit{};
   limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(VmDataKiB() + 16 * 1024) * 1024;
@@ -93,6 +108,12 @@ TEST(HugePageHeapTest, AdvisesTheReserveAndKeepsLargeBlocksInIt) {
   if (kSanitizerAllocator) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
   if (!KernelHasTransparentHugePages()) GTEST_SKIP() << "transparent huge pages are off";
   EXPECT_EXIT(AdvisedHeapChild(), testing::ExitedWithCode(0), "");
+}
+
+TEST(HugePageHeapTest, AdvisesFromTheReserveWhenItStartsBelowTheHeapsEnd) {
+  if (kSanitizerAllocator) GTEST_SKIP() << "a sanitizer's allocator replaces malloc";
+  if (!KernelHasTransparentHugePages()) GTEST_SKIP() << "transparent huge pages are off";
+  EXPECT_EXIT(AdvisedHeapFromATopChunkAcrossABoundaryChild(), testing::ExitedWithCode(0), "");
 }
 
 TEST(HugePageHeapTest, FallsBackToOrdinaryMallocWhenTheHeapCannotGrow) {
