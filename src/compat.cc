@@ -78,16 +78,16 @@ std::string CompatText(const Compat& compat) {
 }
 
 void ApplyCompat(const Compat& compat, ReadOptions* options) {
-  options->information_in_tangent_order = compat.dsc[1];
+  if (compat.dsc[1]) options->information_in_tangent_order = true;
 }
 
 void ApplyCompat(const Compat& compat, BuildOptions* options) {
   if (compat.dsc[4]) options->motion_init = MotionInit::kIdentity;
-  options->dsc_object_centric_noise = compat.dsc[5];
+  if (compat.dsc[5]) options->dsc_object_centric_noise = true;
   if (compat.dsc[8]) options->object_init = ObjectInit::kCentroid;
-  options->dynosam_smoothing = compat.dynosam[1];
-  options->dynosam_embedded_frame = compat.dynosam[3];
-  options->dynosam_points_from_measurements = compat.dynosam[4];
+  if (compat.dynosam[1]) options->dynosam_smoothing = true;
+  if (compat.dynosam[3]) options->dynosam_embedded_frame = true;
+  if (compat.dynosam[4]) options->dynosam_points_from_measurements = true;
 }
 
 void ApplyCompat(const Compat& compat, bool world_centric, SolverOptions* options) {
@@ -100,8 +100,8 @@ void ApplyCompat(const Compat& compat, bool world_centric, SolverOptions* option
     Huber(options, EdgeKind::kDynamicPoint, 1e-5);
   }
   if (compat.dsc[5]) Huber(options, EdgeKind::kObjectMotion, 1e-3);
-  options->dsc_object_motion_residual = compat.dsc[6];
-  options->dsc_released_lm = compat.dsc[7];
+  if (compat.dsc[6]) options->dsc_object_motion_residual = true;
+  if (compat.dsc[7]) options->dsc_released_lm = true;
   if (compat.dynosam[2]) Huber(options, EdgeKind::kHybridPoint, 1e-4);
 }
 

@@ -205,6 +205,12 @@ if grep -q '"robust": "hybrid_point=huber:1e-04"' "$work/hy/summary.json"; then
 else
   failed=$((failed + 1)); echo "FAIL: --compat dynosam:2 did not put Huber 1e-4 on hybrid_point edges"
 fi
+check "solve with one compatibility item as its own option" 0 "$dynslam" solve "$data/synthetic/graphs/oc_b.g2o" --out "$work/released" --dsc-released-lm on --max-iterations 2
+if grep -q '"dsc_released_lm": true' "$work/released/summary.json"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: --dsc-released-lm on was not used (summary.json's solver block)"
+fi
 
 # docs/OPTIONS.md is what `dynslam options` prints from the option tables (issue 43): the list
 # cannot fall behind the code.

@@ -171,6 +171,30 @@ TEST(OptionsTest, SimulationOptionsReadBackAndKeepTheirEarlierSpellings) {
   }
 }
 
+// Every compatibility item is also an option of its own (docs/OPTIONS.md); `--compat none`, the
+// default, must not switch off one that was given by itself (`--dsc-released-lm on`).
+TEST(OptionsTest, CompatNoneKeepsTheItemsSwitchedOnOneByOne) {
+  SolverOptions solver;
+  solver.dsc_object_motion_residual = solver.dsc_released_lm = true;
+  ApplyCompat(Compat{}, false, &solver);
+  EXPECT_TRUE(solver.dsc_object_motion_residual);
+  EXPECT_TRUE(solver.dsc_released_lm);
+
+  BuildOptions build;
+  build.dsc_object_centric_noise = build.dynosam_smoothing = build.dynosam_embedded_frame =
+      build.dynosam_points_from_measurements = true;
+  ApplyCompat(Compat{}, &build);
+  EXPECT_TRUE(build.dsc_object_centric_noise);
+  EXPECT_TRUE(build.dynosam_smoothing);
+  EXPECT_TRUE(build.dynosam_embedded_frame);
+  EXPECT_TRUE(build.dynosam_points_from_measurements);
+
+  ReadOptions read;
+  read.information_in_tangent_order = true;
+  ApplyCompat(Compat{}, &read);
+  EXPECT_TRUE(read.information_in_tangent_order);
+}
+
 TEST(OptionsTest, APresetRefusesAnOptionThatUndoesIt) {
   SolverOptions options;
   ASSERT_EQ(ApplyOptions(SolverOptionTable(), {{"tolerances", "tight"}}, Plain, &options),

@@ -28,6 +28,8 @@ std::string CompatText(const Compat& compat);
 // One option, `compat`, whose text is ParseCompat's (options.h).
 const OptionTable<Compat>& CompatOptionTable();
 
+// Each item given switches its options on; the others are left as they are, so an item's option
+// given by itself (`--dsc-released-lm on`) holds under `--compat none`.
 void ApplyCompat(const Compat& compat, ReadOptions* options);
 void ApplyCompat(const Compat& compat, BuildOptions* options);
 // `world_centric`: item 3 (Huber on point edges) applies to world-centric graphs only.
