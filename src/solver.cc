@@ -398,6 +398,11 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
   o.gradient_tolerance = options.gradient_tolerance;
   o.parameter_tolerance = options.parameter_tolerance;
   o.initial_trust_region_radius = 1.0 / options.initial_lambda;
+  if (!options.jacobi_scaling) {  // damping λ·I: the LM diagonal held at 1
+    o.jacobi_scaling = false;
+    o.min_lm_diagonal = 1;
+    o.max_lm_diagonal = 1;
+  }
   if (options.dsc_released_lm) {
     o.jacobi_scaling = false;
     o.min_lm_diagonal = 1;

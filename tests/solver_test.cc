@@ -44,6 +44,34 @@ TEST(SolverTest, TwoPosesReachZeroCostAtTheMeasurement) {
   EXPECT_EQ(report->edges_by_kind[static_cast<int>(EdgeKind::kOdometry)], 1);
 }
 
+// A camera held fixed and one point seen at the camera's origin with information 100·I: the
+// cost is linear least squares, 50·|m|², and Gauss–Newton's step takes m to 0. LM's first step
+// with damping λ = 100 goes a fraction of the way: 100 / (100 + λ) = 1/2 with λ·I
+// (jacobi_scaling off, GTSAM's damping), 1 / (1 + λ) with λ·diag(JᵀJ) (the default).
+TEST(SolverTest, JacobiScalingOffDampsWithLambdaTimesIdentity) {
+  constexpr char kFixedCameraAndPoint[] =
+      "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
+      "VERTEX_TRACKXYZ 1 1 2 3\n"
+      "EDGE_SE3_TRACKXYZ 0 1 0 0 0 100 0 0 100 0 100 0\n";
+  for (const bool jacobi_scaling : {false, true}) {
+    Graph graph = Read(kFixedCameraAndPoint);
+    SolverOptions options;
+    options.fix_first = true;
+    options.minimizer = MinimizerType::kLevenbergMarquardt;
+    options.initial_lambda = 100;
+    options.max_iterations = 1;
+    options.jacobi_scaling = jacobi_scaling;
+    Expected<SolveReport> report = Solve(options, &graph);
+    ASSERT_TRUE(report.ok()) << report.error().ToString();
+    ASSERT_EQ(report->convergence.size(), 1u);
+    const double fraction = jacobi_scaling ? 1.0 / 101 : 0.5;
+    EXPECT_NEAR(report->initial_cost, 50 * 14, 1e-9);
+    EXPECT_NEAR(report->convergence[0].trial_cost, 50 * 14 * std::pow(1 - fraction, 2), 1e-9)
+        << "jacobi_scaling " << jacobi_scaling;
+    EXPECT_NEAR(graph.Find(1)->value[2], 3 * (1 - fraction), 1e-12);
+  }
+}
+
 TEST(SolverTest, ConvergenceRowsFollowSpecSection4) {
   Graph graph = Read(kTwoPoses);
   Expected<SolveReport> report = Solve(SolverOptions{}, &graph);

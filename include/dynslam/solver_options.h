@@ -68,6 +68,7 @@ struct SolverOptions {
   bool extrapolation = true;
   bool gauge_moves = false;
   double initial_lambda = 0;    // 0: auto
+  bool jacobi_scaling = true;
   int nonmonotonic_steps = -1;  // −1: auto
   bool eliminate_object_points = false;
   Frame object_point_variables = Frame::kWorld;
@@ -130,6 +131,10 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
              "first LM damping, relative to diag(JᵀJ) (Ceres: 1 / initial trust-region radius); "
              "0: 1e-6 for graphs with points, 1e-10 for pose graphs",
              0, 1e16),
+        Switch("jacobi_scaling", "solver", &O::jacobi_scaling,
+               "LM damps with lambda·diag(JᵀJ) and dogleg's trust region is scaled by it "
+               "(Ceres's way); off: lambda·I, GTSAM's LM damping, and an unscaled trust region "
+               "(docs/CONVERGENCE.md §9)"),
         Integer("nonmonotonic_steps", "solver", &O::nonmonotonic_steps,
                 "accept a step that raises the cost while it stays below the best of the last N "
                 "accepted ones (Ceres's non-monotonic steps); -1: 5 for graphs with kinematic "
