@@ -134,7 +134,7 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
         Switch("jacobi_scaling", "solver", &O::jacobi_scaling,
                "LM damps with lambda·diag(JᵀJ) and dogleg's trust region is scaled by it "
                "(Ceres's way); off: lambda·I, GTSAM's LM damping, and an unscaled trust region "
-               "(docs/CONVERGENCE.md §9)"),
+               "(docs/CONVERGENCE.md §11)"),
         Integer("nonmonotonic_steps", "solver", &O::nonmonotonic_steps,
                 "accept a step that raises the cost while it stays below the best of the last N "
                 "accepted ones (Ceres's non-monotonic steps); -1: 5 for graphs with kinematic "
