@@ -238,7 +238,8 @@ def main():
         for formulation, graph in graphs.items():
             rows += runs_of(args, sequence, formulation, graph,
                             out / sequence / "runs" / formulation)
-            write(out, rows, table_to_gtsam_cost if args.to_gtsam_cost_only else table)  # after every graph: a long run stopped keeps what it measured
+            # after every graph: a long run stopped keeps what it measured
+            write(out, rows, table_to_gtsam_cost if args.to_gtsam_cost_only else table)
             print(f"[paper_scale] {sequence} {formulation} done", file=sys.stderr, flush=True)
     print((out / "table.md").read_text(), end="")
 
