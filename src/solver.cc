@@ -403,10 +403,7 @@ ceres::Solver::Options MakeCeresOptions(const SolverOptions& options) {
     o.min_lm_diagonal = 1;
     o.max_lm_diagonal = 1;
   }
-  if (options.dsc_released_lm) {
-    o.jacobi_scaling = false;
-    o.min_lm_diagonal = 1;
-    o.max_lm_diagonal = 1;
+  if (options.dsc_released_lm) {  // its λ·I damping: jacobi_scaling off (ResolveAuto)
     o.min_trust_region_radius = 1.0 / kReleasedMaxLambda;
     o.max_num_iterations = std::numeric_limits<int>::max();  // the recorder counts accepted steps
   }
@@ -673,6 +670,7 @@ SolverOptions ResolveAuto(const SolverOptions& options, const Graph& graph) {
   if (resolved.initial_lambda == 0) resolved.initial_lambda = has_points ? 1e-6 : 1e-10;
   if (resolved.dsc_released_lm) {  // SPEC §6 `released`
     resolved.minimizer = MinimizerType::kLevenbergMarquardt;
+    resolved.jacobi_scaling = false;
     resolved.initial_lambda = 1e-5;
     resolved.function_tolerance = kReleasedTolerance;
     resolved.gradient_tolerance = 0;

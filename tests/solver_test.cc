@@ -347,6 +347,7 @@ TEST_F(ObjectCentricChartTest, ReleasedRuleStopsOnTheFirstSmallDecrease) {
   ASSERT_TRUE(report.ok()) << report.error().ToString();
   EXPECT_EQ(report->options_used.minimizer, MinimizerType::kLevenbergMarquardt);
   EXPECT_EQ(report->options_used.initial_lambda, 1e-5);
+  EXPECT_FALSE(report->options_used.jacobi_scaling);  // GTSAM's λ·I
   EXPECT_LE(report->iterations, 100);
   ASSERT_GE(report->iterations, 2);
   // The rule: stop at the first step whose |cost change| ≤ 1e-5 · cost (Ceres's function
