@@ -88,9 +88,8 @@ def first_step_at(out_dir, target):
     return None
 
 
-def time_to_cost(out_dir, summary, target):
-    """dynslam: preprocessing + minimiser time at the first accepted step at or below target."""
-    row = first_step_at(out_dir, target)
+def time_to_cost(summary, row):
+    """dynslam: preprocessing + minimiser time at `row` (first_step_at's), None without one."""
     return summary["time_s"]["preprocessing"] + float(row["time_s"]) if row else None
 
 
@@ -133,7 +132,7 @@ def runs_to_gtsam_cost(args, sequence, formulation, graph, out):
     reached = first_step_at(str(d), target)
     rows = [g, {"run": "defaults_to_gtsam_cost", "steps": int(reached["step"]) if reached else None,
                 "final_cost": s["final_cost"], "variables": s["variables"]["total"],
-                "to_gtsam_cost_s": time_to_cost(str(d), s, target)}]
+                "to_gtsam_cost_s": time_to_cost(s, reached)}]
     for r in rows:
         r.update(sequence=sequence, formulation=formulation)
     return rows
@@ -154,10 +153,11 @@ def runs_of_graph(args, sequence, formulation, graph, out):
     for name, flags in runs:
         d = out / name
         wall, peak, s = run([args.dynslam, "solve", str(graph), "--out", str(d), *flags], str(d))
+        reached = first_step_at(str(d), target) if target else None
         rows.append({"run": name, "wall_s": wall, "peak_kib": peak,
                      "solve_s": s["time_s"]["total"], "steps": s["steps"],
                      "final_cost": s["final_cost"], "variables": s["variables"]["total"],
-                     "to_gtsam_cost_s": time_to_cost(str(d), s, target) if target else None})
+                     "to_gtsam_cost_s": time_to_cost(s, reached)})
     optimum = min(r["final_cost"] for r in rows)
     for r in rows:
         r.update(sequence=sequence, formulation=formulation,

@@ -32,6 +32,14 @@ expect_output() {  # description pattern
     head -5 "$work/out"
   fi
 }
+expect_no_traceback() {  # description
+  if grep -q Traceback "$work/out"; then
+    failed=$((failed + 1))
+    echo "FAIL: $1 printed a traceback"
+  else
+    passed=$((passed + 1))
+  fi
+}
 
 check "no command" 2 "$dynslam"
 check "top-level help" 0 "$dynslam" --help
@@ -89,14 +97,14 @@ if /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1; then
   sed -i '3s/.*/1,0.1,zero,0.3,0,0,0,1/' "$work/bad csv/cameras.csv"
   check "plot_trajectory: malformed cameras.csv" 1 "$plot" "$work/bad csv" --out "$work/bad.png"
   expect_output "malformed cameras.csv names file and line" "bad csv/cameras.csv:3: field 'zero' is not a finite number"
-  if grep -q Traceback "$work/out"; then failed=$((failed + 1)); echo "FAIL: plot_trajectory printed a traceback"; else passed=$((passed + 1)); fi
+  expect_no_traceback "plot_trajectory"
   # The other two plot scripts: a file that cannot be read or written is one line, exit 1.
   check "plot_convergence: missing file" 1 "$root/scripts/plot_convergence.py" "$work/missing.csv" --out "$work/c.png"
   expect_output "missing convergence.csv named" "missing.csv: cannot read the file: No such file or directory"
-  if grep -q Traceback "$work/out"; then failed=$((failed + 1)); echo "FAIL: plot_convergence printed a traceback"; else passed=$((passed + 1)); fi
+  expect_no_traceback "plot_convergence"
   check "plot_errors: unwritable image" 1 "$root/scripts/plot_errors.py" "$work/wc/errors.csv" --out "$work/no dir/e.png"
   expect_output "unwritable errors image named" "no dir/e.png: cannot write the image"
-  if grep -q Traceback "$work/out"; then failed=$((failed + 1)); echo "FAIL: plot_errors printed a traceback"; else passed=$((passed + 1)); fi
+  expect_no_traceback "plot_errors"
   check "compare draws its plots" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare" --formulations wc
   for file in convergence.png trajectory.png errors.png wc/errors.csv; do
     if [ -s "$work/compare/$file" ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: compare drew no $file"; fi
