@@ -3,17 +3,23 @@
 // values, and of the reduced camera matrix the Schur solvers factor (the points dynslam
 // eliminates first, SolveReport::eliminated_first, removed by the Schur complement). Each matrix
 // is factored by CHOLMOD simplicial, CHOLMOD supernodal and Eigen's SimplicialLDLT, after a
-// fill-reducing analysis (AMD) that is not timed: a solver analyses once and factors every step.
+// fill-reducing analysis that is not timed: a solver analyses once and factors every step.
+// The analysis is AMD (as Ceres 2.1 orders for CHOLMOD) unless --orderings names others for
+// CHOLMOD: metis (METIS on A) or nesdis (CHOLMOD's nested dissection), issue 42's question
+// whether either beats AMD at the paper's scale.
 //
-//   factorization_floor GRAPH [--repeat N] [--lambda X]
+//   factorization_floor GRAPH [--repeat N] [--lambda X] [--orderings amd,metis,nesdis]
 //
-// Prints one CSV row per (matrix, method): graph, matrix, method, n, nnz_lower, nnz_factor,
-// seconds (the median of N factorisations). CHOLMOD runs with one thread, its regions inline
+// Prints one CSV row per (matrix, method, ordering): graph, matrix, method, ordering, n,
+// nnz_lower, nnz_factor, flops (CHOLMOD's count for its factorisation), seconds (the median of
+// N factorisations). CHOLMOD runs with one thread, its regions inline
 // as in the `dynslam` command (process/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,9 +52,18 @@ double MedianSeconds(int repeat, F&& f) {
   return seconds[seconds.size() / 2];
 }
 
+struct Ordering {
+  const char* name;
+  int cholmod_code;
+};
+constexpr Ordering kOrderings[] = {
+    {"amd", CHOLMOD_AMD}, {"metis", CHOLMOD_METIS}, {"nesdis", CHOLMOD_NESDIS}};
+
 struct Row {
   const char* method;
+  const char* ordering;
   int64_t nnz_factor;
+  double flops;  // -1 where the factoriser does not count them
   double seconds;
 };
 
@@ -57,15 +72,16 @@ Row FactorEigen(const SparseMatrix& a, int repeat) {
   ldlt.analyzePattern(a);
   const double seconds = MedianSeconds(repeat, [&] { ldlt.factorize(a); });
   if (ldlt.info() != Eigen::Success) std::fprintf(stderr, "warning: Eigen LDLT failed\n");
-  return {"eigen_simplicial_ldlt", ldlt.matrixL().nestedExpression().nonZeros(), seconds};
+  return {"eigen_simplicial_ldlt", "amd", ldlt.matrixL().nestedExpression().nonZeros(), -1,
+          seconds};
 }
 
-Row FactorCholmod(const SparseMatrix& a, bool supernodal, int repeat) {
+Row FactorCholmod(const SparseMatrix& a, bool supernodal, const Ordering& ordering, int repeat) {
   cholmod_common common;
   cholmod_start(&common);
   common.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
   common.nmethods = 1;
-  common.method[0].ordering = CHOLMOD_AMD;
+  common.method[0].ordering = ordering.cholmod_code;
   // A view of the lower triangle (stype = -1) of `a`.
   SparseMatrix lower = a.triangularView<Eigen::Lower>();
   lower.makeCompressed();
@@ -82,14 +98,21 @@ Row FactorCholmod(const SparseMatrix& a, bool supernodal, int repeat) {
   view.sorted = 1;
   view.packed = 1;
   cholmod_factor* factor = cholmod_analyze(&view, &common);
+  if (factor == nullptr) {  // e.g. a CHOLMOD built without METIS
+    std::fprintf(stderr, "warning: CHOLMOD's %s analysis failed (status %d)\n", ordering.name,
+                 common.status);
+    cholmod_finish(&common);
+    return {supernodal ? "cholmod_supernodal" : "cholmod_simplicial", ordering.name, -1, -1, -1};
+  }
   const ScopedOpenMpThreadCap one_thread(1);  // as `dynslam solve` runs CHOLMOD
   const double seconds =
       MedianSeconds(repeat, [&] { cholmod_factorize(&view, factor, &common); });
   if (common.status != CHOLMOD_OK) std::fprintf(stderr, "warning: CHOLMOD status %d\n", common.status);
-  const int64_t nnz = static_cast<int64_t>(common.lnz);
+  const Row row{supernodal ? "cholmod_supernodal" : "cholmod_simplicial", ordering.name,
+                static_cast<int64_t>(common.lnz), common.fl, seconds};
   cholmod_free_factor(&factor, &common);
   cholmod_finish(&common);
-  return {supernodal ? "cholmod_supernodal" : "cholmod_simplicial", nnz, seconds};
+  return row;
 }
 
 // S = A_ff − A_fe·A_ee⁻¹·A_ef, with A_ee block diagonal (one 3×3 block per eliminated point).
@@ -132,20 +155,45 @@ SparseMatrix SchurComplement(const SparseMatrix& a, const SystemJacobian& system
   return s;
 }
 
+// "amd,nesdis" → those orderings; nothing for an unknown name.
+std::optional<std::vector<Ordering>> ParseOrderings(const std::string& list) {
+  std::vector<Ordering> out;
+  size_t begin = 0;
+  while (begin <= list.size()) {
+    const size_t end = std::min(list.find(',', begin), list.size());
+    const std::string name = list.substr(begin, end - begin);
+    const auto* found = std::find_if(std::begin(kOrderings), std::end(kOrderings),
+                                     [&](const Ordering& o) { return name == o.name; });
+    if (found == std::end(kOrderings)) return std::nullopt;
+    out.push_back(*found);
+    begin = end + 1;
+  }
+  return out;
+}
+
 int Run(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: factorization_floor GRAPH [--repeat N] [--lambda X]\n");
+    std::fprintf(stderr, "usage: factorization_floor GRAPH [--repeat N] [--lambda X] "
+                         "[--orderings amd,metis,nesdis]\n");
     return 2;
   }
   const std::string path = argv[1];
   int repeat = 5;
   double lambda = 1e-6;  // dynslam's first LM damping on graphs with points (solver.h)
+  std::vector<Ordering> orderings = {kOrderings[0]};
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--repeat") {
       repeat = std::max(1, std::atoi(argv[i + 1]));
     } else if (flag == "--lambda") {
       lambda = std::atof(argv[i + 1]);
+    } else if (flag == "--orderings") {
+      std::optional<std::vector<Ordering>> parsed = ParseOrderings(argv[i + 1]);
+      if (!parsed) {
+        std::fprintf(stderr, "--orderings takes a comma-separated list of amd, metis, nesdis\n");
+        return 2;
+      }
+      orderings = *parsed;
     } else {
       std::fprintf(stderr, "unknown option %s\n", flag.c_str());
       return 2;
@@ -169,15 +217,21 @@ int Run(int argc, char** argv) {
   normal.makeCompressed();
   const SparseMatrix reduced = SchurComplement(normal, *system);
 
-  std::printf("graph,matrix,method,n,nnz_lower,nnz_factor,seconds\n");
+  std::printf("graph,matrix,method,ordering,n,nnz_lower,nnz_factor,flops,seconds\n");
   for (const auto& [name, matrix] : {std::pair<const char*, const SparseMatrix&>{"normal", normal},
                                      {"reduced", reduced}}) {
     const int64_t nnz_lower = SparseMatrix(matrix.triangularView<Eigen::Lower>()).nonZeros();
-    for (const Row& row : {FactorCholmod(matrix, false, repeat), FactorCholmod(matrix, true, repeat),
-                           FactorEigen(matrix, repeat)}) {
-      std::printf("%s,%s,%s,%lld,%lld,%lld,%.6g\n", path.c_str(), name, row.method,
-                  static_cast<long long>(matrix.rows()), static_cast<long long>(nnz_lower),
-                  static_cast<long long>(row.nnz_factor), row.seconds);
+    std::vector<Row> rows;
+    for (const Ordering& ordering : orderings) {
+      rows.push_back(FactorCholmod(matrix, false, ordering, repeat));
+      rows.push_back(FactorCholmod(matrix, true, ordering, repeat));
+      if (std::string(ordering.name) == "amd") rows.push_back(FactorEigen(matrix, repeat));
+    }
+    for (const Row& row : rows) {
+      std::printf("%s,%s,%s,%s,%lld,%lld,%lld,%.6g,%.6g\n", path.c_str(), name, row.method,
+                  row.ordering, static_cast<long long>(matrix.rows()),
+                  static_cast<long long>(nnz_lower), static_cast<long long>(row.nnz_factor),
+                  row.flops, row.seconds);
     }
   }
   return 0;
