@@ -4,16 +4,16 @@
 // eliminates first, SolveReport::eliminated_first, removed by the Schur complement). Each matrix
 // is factored by CHOLMOD simplicial, CHOLMOD supernodal and Eigen's SimplicialLDLT, after a
 // fill-reducing analysis that is not timed: a solver analyses once and factors every step.
-// The analysis is AMD (as Ceres 2.1 orders for CHOLMOD) unless --orderings names others for
-// CHOLMOD: metis (METIS on A) or nesdis (CHOLMOD's nested dissection), issue 42's question
-// whether either beats AMD at the paper's scale.
+// The analysis is AMD on the scalar matrix (Ceres 2.1 runs AMD on the variable blocks instead)
+// unless --orderings names others for CHOLMOD: metis (METIS on the matrix) or nesdis (CHOLMOD's
+// nested dissection); Eigen's rows are always AMD.
 //
 //   factorization_floor GRAPH [--repeat N] [--lambda X] [--orderings amd,metis,nesdis]
 //
 // Prints one CSV row per (matrix, method, ordering): graph, matrix, method, ordering, n,
-// nnz_lower, nnz_factor, flops (CHOLMOD's count for its factorisation), seconds (the median of
-// N factorisations). CHOLMOD runs with one thread, its regions inline
-// as in the `dynslam` command (process/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
+// nnz_lower, nnz_factor, flops (CHOLMOD's count for its factorisation; -1 for Eigen), seconds
+// (the median of N factorisations). CHOLMOD runs with one thread, its regions inline as in the
+// `dynslam` command (process/inline_openmp_regions.h; DYNSLAM_INLINE_OPENMP=0 for libgomp's).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
