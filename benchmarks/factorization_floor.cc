@@ -77,6 +77,7 @@ Row FactorEigen(const SparseMatrix& a, int repeat) {
 }
 
 Row FactorCholmod(const SparseMatrix& a, bool supernodal, const Ordering& ordering, int repeat) {
+  const char* method = supernodal ? "cholmod_supernodal" : "cholmod_simplicial";
   cholmod_common common;
   cholmod_start(&common);
   common.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
@@ -102,14 +103,13 @@ Row FactorCholmod(const SparseMatrix& a, bool supernodal, const Ordering& orderi
     std::fprintf(stderr, "warning: CHOLMOD's %s analysis failed (status %d)\n", ordering.name,
                  common.status);
     cholmod_finish(&common);
-    return {supernodal ? "cholmod_supernodal" : "cholmod_simplicial", ordering.name, -1, -1, -1};
+    return {method, ordering.name, -1, -1, -1};
   }
   const ScopedOpenMpThreadCap one_thread(1);  // as `dynslam solve` runs CHOLMOD
   const double seconds =
       MedianSeconds(repeat, [&] { cholmod_factorize(&view, factor, &common); });
   if (common.status != CHOLMOD_OK) std::fprintf(stderr, "warning: CHOLMOD status %d\n", common.status);
-  const Row row{supernodal ? "cholmod_supernodal" : "cholmod_simplicial", ordering.name,
-                static_cast<int64_t>(common.lnz), common.fl, seconds};
+  const Row row{method, ordering.name, static_cast<int64_t>(common.lnz), common.fl, seconds};
   cholmod_free_factor(&factor, &common);
   cholmod_finish(&common);
   return row;
@@ -225,7 +225,7 @@ int Run(int argc, char** argv) {
     for (const Ordering& ordering : orderings) {
       rows.push_back(FactorCholmod(matrix, false, ordering, repeat));
       rows.push_back(FactorCholmod(matrix, true, ordering, repeat));
-      if (std::string(ordering.name) == "amd") rows.push_back(FactorEigen(matrix, repeat));
+      if (ordering.cholmod_code == CHOLMOD_AMD) rows.push_back(FactorEigen(matrix, repeat));
     }
     for (const Row& row : rows) {
       std::printf("%s,%s,%s,%s,%lld,%lld,%lld,%.6g,%.6g\n", path.c_str(), name, row.method,
