@@ -1,8 +1,9 @@
-// r = S · (L_curr · m_L − H · L_prev · m_L)   (SPEC §1.3, EDGE_SE3_OBJ_MOTION; paper eq.
+// r = S · (L_curr · m_L − H · L_prev · m_L − z)   (SPEC §1.3, EDGE_SE3_OBJ_MOTION; paper eq.
 // object_landmark_motion_factor)
 // L_prev = L_w_prev, L_curr = L_w_curr: object poses at frames k−1 and k (object to world);
-// H = H_w: the object's motion H^W_{k−1,k}; m_L = m_o: a point fixed in the object frame.
-// Zero when the kinematics hold (H = L_curr · L_prev⁻¹). No measurement (SPEC §3.3 oc_a).
+// H = H_w: the object's motion H^W_{k−1,k}; m_L = m_o: a point fixed in the object frame; z: the
+// front-end motion edge's (SPEC §3.3 oc_a), normally 0. With z = 0, zero when the kinematics
+// hold (H = L_curr · L_prev⁻¹).
 #ifndef DYNSLAM_COST_FUNCTIONS_OBJECT_POINT_MOTION_ERROR_H_
 #define DYNSLAM_COST_FUNCTIONS_OBJECT_POINT_MOTION_ERROR_H_
 
@@ -15,8 +16,8 @@ namespace dynslam {
 
 class ObjectPointMotionError {
  public:
-  explicit ObjectPointMotionError(const Eigen::Matrix3d& information)
-      : sqrt_information_(SqrtInformation(information)) {}
+  ObjectPointMotionError(const Eigen::Vector3d& measurement, const Eigen::Matrix3d& information)
+      : measurement_(measurement), sqrt_information_(SqrtInformation(information)) {}
 
   template <typename T>
   bool operator()(const T* const L_w_prev, const T* const L_w_curr, const T* const H_w,
@@ -27,18 +28,20 @@ class ObjectPointMotionError {
     PoseTransformPoint(L_w_prev, m_o, p_w_prev);
     Eigen::Matrix<T, 3, 1> p_w_moved;
     PoseTransformPoint(H_w, p_w_prev, p_w_moved.data());
-    const Eigen::Matrix<T, 3, 1> error = p_w_curr - p_w_moved;
+    const Eigen::Matrix<T, 3, 1> error = p_w_curr - p_w_moved - measurement_.cast<T>();
     Whiten(sqrt_information_, error.data(), residual);
     return true;
   }
 
-  static ceres::CostFunction* Create(const Eigen::Matrix3d& information) {
+  static ceres::CostFunction* Create(const Eigen::Vector3d& measurement,
+                                     const Eigen::Matrix3d& information) {
     return new ceres::AutoDiffCostFunction<ObjectPointMotionError, 3, kPoseSize, kPoseSize,
                                            kPoseSize, kPointSize>(
-        new ObjectPointMotionError(information));
+        new ObjectPointMotionError(measurement, information));
   }
 
  private:
+  Eigen::Vector3d measurement_;
   Eigen::Matrix3d sqrt_information_;
 };
 

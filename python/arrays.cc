@@ -39,7 +39,7 @@ std::vector<py::ssize_t> RowDims(Shape shape) {
 struct Column {
   std::string name;
   Shape shape;
-  bool optional = false;  // absent means 0 (an optional trailing flag)
+  bool optional = false;  // absent means 0 (an optional trailing field)
 };
 
 // Lists the columns of an edge struct (g2o's offset parameter id is not one: it is never
@@ -52,6 +52,9 @@ class ColumnLister : public IgnoreFields {
   void OptionalFlag(const char* name, bool) { columns.push_back({name, Shape::kFlag, true}); }
   void Measurement(const Pose&) { columns.push_back({"measurement", Shape::kPose}); }
   void Measurement(const Eigen::Vector3d&) { columns.push_back({"measurement", Shape::kVector3}); }
+  void OptionalMeasurement(const Eigen::Vector3d&) {  // 0 when absent
+    columns.push_back({"measurement", Shape::kVector3, true});
+  }
   void Information(const Eigen::Matrix3d&) { columns.push_back({"information", Shape::kMatrix3}); }
   void Information(const Matrix6d&) { columns.push_back({"information", Shape::kMatrix6}); }
 };
@@ -95,6 +98,7 @@ class ColumnAppender : public IgnoreFields {
     ++k_;
   }
   void Measurement(const Eigen::Vector3d& z) { Append(z); }
+  void OptionalMeasurement(const Eigen::Vector3d& z) { Append(z); }
   void Information(const Eigen::Matrix3d& m) { Append(m.transpose()); }  // row by row
   void Information(const Matrix6d& tangent) {
     Matrix6d file_order;

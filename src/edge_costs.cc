@@ -38,7 +38,7 @@ ceres::CostFunction* MakeCost(const ObjectPointEdge& e, const SolverOptions&) {
 
 ceres::CostFunction* MakeCost(const ObjectMotionEdge& e, const SolverOptions& options) {
   return options.dsc_object_motion_residual ? ObjectPointMotionErrorDsc::Create(e.information)
-                                            : ObjectPointMotionError::Create(e.information);
+                                            : ObjectPointMotionError::Create(e.measurement, e.information);
 }
 
 ceres::CostFunction* MakeCost(const KinematicEdge& e, const SolverOptions& options) {
@@ -81,7 +81,7 @@ AnchoredCost MakeAnchoredCost(const ObjectMotionEdge& e, const SolverOptions& op
                               VertexId anchor) {
   return options.dsc_object_motion_residual
              ? MakeAnchoredMotionCost(e, ObjectPointMotionErrorDsc(e.information), anchor)
-             : MakeAnchoredMotionCost(e, ObjectPointMotionError(e.information), anchor);
+             : MakeAnchoredMotionCost(e, ObjectPointMotionError(e.measurement, e.information), anchor);
 }
 
 }  // namespace dynslam

@@ -583,17 +583,12 @@ void Builder::AddObjectCentric(Graph& out, Formulation formulation, BuildState& 
       }
       if (formulation == Formulation::kObjectCentricC) continue;
       for (const MotionEdge* m : t->edges) {
-        if (!m->measurement.isZero() && report_ != nullptr) {
-          report_->warnings.push_back(
-              name_ + ":" + std::to_string(m->line) +
-              ": EDGE_SE3_MOTION has a non-zero measurement, which EDGE_SE3_OBJ_MOTION has no "
-              "field for (SPEC §3.3)");
-        }
         ObjectMotionEdge e;
         e.pose_prev = pose_ids.at(m->frame - 1);
         e.pose_curr = pose_ids.at(m->frame);
         e.motion = m->motion;
         e.point = state.object_point.at(t);
+        e.measurement = m->measurement;
         e.information = options_.dsc_object_centric_noise
                             ? Eigen::Matrix3d(Eigen::Matrix3d::Identity() / (0.2 * 0.2))
                             : m->information;
@@ -683,6 +678,7 @@ void Builder::AddHybrid(Graph& out, BuildState& state) const {
       }
     }
   } else {
+    int64_t not_identity = 0, first_line = 0;
     for (const BetweenEdge& e : fe_.Edges<BetweenEdge>()) {
       if (fe_.Find(e.from)->label.role != Role::kMotion || !KeptSmoothing(e)) continue;
       const Label& a = fe_.Find(e.from)->label;
@@ -690,12 +686,15 @@ void Builder::AddHybrid(Graph& out, BuildState& state) const {
       const Pose embedded = out.vertices.at(embedded_at(a.object, k)).pose();
       add_smoothing(a.object, k, HybridSmoothingInformation(e, embedded));
       const Eigen::Quaterniond rotation = e.measurement.rotation();
-      const bool identity = e.measurement.translation().isZero(0) && rotation.vec().isZero(0);
-      if (!identity && report_ != nullptr) {
-        report_->warnings.push_back(name_ + ":" + std::to_string(e.line) +
-                                    ": the smoothing edge's measurement is not the identity, which "
-                                    "EDGE_SE3_HY_SMOOTHING has no field for (SPEC §3.6)");
+      if (!e.measurement.translation().isZero(0) || !rotation.vec().isZero(0)) {
+        if (not_identity++ == 0) first_line = e.line;
       }
+    }
+    if (not_identity > 0 && report_ != nullptr) {
+      report_->warnings.push_back(
+          name_ + ":" + std::to_string(first_line) + ": " + Count(not_identity, "smoothing edges") +
+          " with a measurement other than the identity, which EDGE_SE3_HY_SMOOTHING has no field "
+          "for (SPEC §3.6): ignored");
     }
   }
   int64_t kept = 0;

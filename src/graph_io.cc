@@ -222,14 +222,15 @@ struct EdgeLayout {
   void Integer(const char* name, int64_t) { Add(1, name); }
   void OptionalOffsetParameter(const char* name, bool) { AddOptional(name); }
   void OptionalFlag(const char* name, bool) { AddOptional(name); }
+  void OptionalMeasurement(const Eigen::Vector3d&) { AddOptional("zx zy zz", 3); }
   void Measurement(const Pose&) { Add(7, "tx ty tz qx qy qz qw"); }
   void Measurement(const Eigen::Vector3d&) { Add(3, "zx zy zz"); }
   void Information(const Eigen::Matrix3d&) { Add(6, "I(6)"); }
   void Information(const Matrix6d&) { Add(21, "I(21)"); }
 
  private:
-  void AddOptional(const char* name) {
-    ++optional;
+  void AddOptional(const char* name, size_t n = 1) {
+    optional += n;
     text += std::string(text.empty() ? "" : " ") + "[" + name + "]";
   }
 };
@@ -271,6 +272,10 @@ class EdgeFieldParser {
   void Measurement(Pose& pose) { Next(7, [&] { return p_.ReadPose(i_, &pose, &error_); }); }
   void Measurement(Eigen::Vector3d& z) {
     Next(3, [&] { return p_.Numbers(i_, 3, z.data(), &error_); });
+  }
+  void OptionalMeasurement(Eigen::Vector3d& z) {
+    z.setZero();
+    if (with_optional_) Measurement(z);
   }
   void Information(Eigen::Matrix3d& m) {
     Next(6, [&] { return p_.ReadInformation<3>(i_, &m, &error_); });
@@ -572,6 +577,9 @@ class EdgeFieldWriter : public IgnoreFields {
   void Measurement(const Pose& pose) { w_.PoseFields(pose); }
   void Measurement(const Eigen::Vector3d& z) {
     for (int i = 0; i < 3; ++i) w_.Number(z[i]);
+  }
+  void OptionalMeasurement(const Eigen::Vector3d& z) {
+    if (!z.isZero(0)) Measurement(z);
   }
   void Information(const Eigen::Matrix3d& m) { w_.Upper3(m); }
   void Information(const Matrix6d& m) { w_.Upper6(m); }

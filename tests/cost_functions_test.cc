@@ -111,6 +111,8 @@ Matrix6d Information6() {
   a(0, 4) = a(4, 0) = 0.5;  // a non-diagonal term exercises the full S
   return a;
 }
+const Eigen::Vector3d kZero3 = Eigen::Vector3d::Zero();
+
 Eigen::Matrix3d Information3() {
   Eigen::Matrix3d a;
   a << 4, 0.5, 0, 0.5, 9, 0.2, 0, 0.2, 1;
@@ -218,13 +220,13 @@ TEST(ObjectPointMotionErrorTest, ZeroHandValueAndJacobian) {
   const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
   const Pose h = kOffset;
   const Pose l_curr = Compose(h, l_prev);  // kinematics hold: H = L_curr · L_prev⁻¹
-  std::unique_ptr<ceres::CostFunction> cost(ObjectPointMotionError::Create(Information3()));
+  std::unique_ptr<ceres::CostFunction> cost(ObjectPointMotionError::Create(kZero3, Information3()));
   const Block m_o{0.5, 0.2, -1};
   EXPECT_LT(Residual(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(h), m_o}).norm(),
             1e-13);
   // L_prev = I, L_curr = translation (0,0,1), H = I, m = (1,0,0), I: r = (0, 0, 1).
   std::unique_ptr<ceres::CostFunction> hand(
-      ObjectPointMotionError::Create(Eigen::Matrix3d::Identity()));
+      ObjectPointMotionError::Create(kZero3, Eigen::Matrix3d::Identity()));
   EXPECT_LT((Residual(*hand, {PoseBlock(Pose::Identity()), PoseBlock(Translation(0, 0, 1)),
                               PoseBlock(Pose::Identity()), Block{1, 0, 0}}) -
              Eigen::Vector3d(0, 0, 1))
@@ -234,6 +236,29 @@ TEST(ObjectPointMotionErrorTest, ZeroHandValueAndJacobian) {
     EXPECT_LT(JacobianError(*cost, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(h), m_o}), 1e-7);
     EXPECT_LT(JacobianError(*cost, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(x), m_o}), 1e-7);
   }
+}
+
+// SPEC §3.3: oc_a's edge carries the front-end motion edge's z with the same sign, so at points
+// p = L·m both residuals are equal: m_curr − H·m_prev − z.
+TEST(ObjectPointMotionErrorTest, MeasurementAsTheWorldCentricMotionEdge) {
+  const Pose l_prev = Exp((Vector6d() << 0.2, 0.1, -0.4, 3, 1, 10).finished());
+  const Pose l_curr = Exp((Vector6d() << 0.25, 0.05, -0.3, 3.5, 1, 11).finished());
+  const Pose h = kOffset;
+  const Eigen::Vector3d z(0.03, -0.07, 0.11), m_o(0.5, 0.2, -1);
+  std::unique_ptr<ceres::CostFunction> object(ObjectPointMotionError::Create(z, Information3()));
+  std::unique_ptr<ceres::CostFunction> world(PointMotionError::Create(z, Information3()));
+  const Eigen::Vector3d p_prev = Transform(l_prev, m_o), p_curr = Transform(l_curr, m_o);
+  const Eigen::Vector3d r_object = Residual(
+      *object, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(h), Block{m_o[0], m_o[1], m_o[2]}});
+  const Eigen::Vector3d r_world =
+      Residual(*world, {Block{p_prev[0], p_prev[1], p_prev[2]},
+                        Block{p_curr[0], p_curr[1], p_curr[2]}, PoseBlock(h)});
+  EXPECT_LT((r_object - r_world).norm(), 1e-12);
+  std::unique_ptr<ceres::CostFunction> without(
+      ObjectPointMotionError::Create(kZero3, Information3()));
+  const Eigen::Vector3d r_without = Residual(
+      *without, {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(h), Block{m_o[0], m_o[1], m_o[2]}});
+  EXPECT_LT((r_without - r_object - SqrtInformation(Information3()) * z).norm(), 1e-12);
 }
 
 TEST(ObjectKinematicErrorTest, ZeroHandValueAndJacobian) {
@@ -374,8 +399,8 @@ TEST(WorldAnchoredObjectPointTest, EqualsTheResidualAtTheObjectFramePoint) {
             1e-10);
   EXPECT_LT(JacobianError(*anchored, anchored_blocks), 1e-7);
 
-  const ObjectPointMotionError motion(Information3());
-  std::unique_ptr<ceres::CostFunction> motion_plain(ObjectPointMotionError::Create(Information3()));
+  const ObjectPointMotionError motion(kZero3, Information3());
+  std::unique_ptr<ceres::CostFunction> motion_plain(ObjectPointMotionError::Create(kZero3, Information3()));
   using Motion = WorldAnchored<ObjectPointMotionError, 3, 3>;
   const std::vector<std::pair<std::unique_ptr<ceres::CostFunction>, Pose>> cases = [&] {
     std::vector<std::pair<std::unique_ptr<ceres::CostFunction>, Pose>> c;
@@ -489,7 +514,7 @@ TEST(WorldAnchoredObjectPointTest, ChainRuleGivesTheOnePassJacobians) {
       one_pass(new OnePassAnchored<ObjectPointMeasurementError, 3>{measurement});
   ExpectSameAsOnePass(*chained, one_pass, {PoseBlock(x), PoseBlock(l_curr), PoseBlock(l_a), w});
 
-  const ObjectPointMotionError motion(Information3());
+  const ObjectPointMotionError motion(kZero3, Information3());
   using Motion = WorldAnchored<ObjectPointMotionError, 3, 3>;
   const std::vector<Block> own = {PoseBlock(l_prev), PoseBlock(l_curr), PoseBlock(kOffset), w};
   std::unique_ptr<ceres::CostFunction> at_prev(Motion::AtOwnPose<0>(motion));

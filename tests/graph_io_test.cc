@@ -423,6 +423,32 @@ TEST(GraphIoTest, InfersObjectCentricRolesAndKinds) {
   EXPECT_EQ(KindOf(*graph, graph->Edges<BetweenEdge>()[1]), EdgeKind::kSmoothing);
 }
 
+// SPEC §1.3: EDGE_SE3_OBJ_MOTION's trailing z is optional (0 when absent) and written only when
+// it is not 0, so files without it read and write as before.
+TEST(GraphIoTest, ObjectMotionMeasurementIsAnOptionalTrailingField) {
+  const std::string pose = " 0 0 0 0 0 0 1\n";
+  const std::string vertices = "VERTEX_SE3:QUAT 10" + pose + "VERTEX_SE3:QUAT 11" + pose +
+                               "VERTEX_SE3:QUAT 12" + pose + "VERTEX_TRACKXYZ 20 0 0 1\n";
+  Expected<Graph> with = ReadText(vertices + "EDGE_SE3_OBJ_MOTION 10 11 12 20" + kI6 +
+                                  " 0.25 -0.5 2\n");
+  ASSERT_TRUE(with.ok()) << with.error().ToString();
+  EXPECT_EQ(with->Edges<ObjectMotionEdge>()[0].measurement, Eigen::Vector3d(0.25, -0.5, 2));
+  Expected<Graph> without = ReadText(vertices + "EDGE_SE3_OBJ_MOTION 10 11 12 20" + kI6 + "\n");
+  ASSERT_TRUE(without.ok()) << without.error().ToString();
+  EXPECT_EQ(without->Edges<ObjectMotionEdge>()[0].measurement, Eigen::Vector3d::Zero());
+  auto edge_line = [](const Graph& graph) {
+    std::ostringstream out;
+    WriteGraph(graph, out);
+    const std::string text = out.str();
+    const size_t at = text.find("EDGE_SE3_OBJ_MOTION");
+    return text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(edge_line(*without), "EDGE_SE3_OBJ_MOTION 10 11 12 20" + kI6);
+  EXPECT_EQ(edge_line(*with), "EDGE_SE3_OBJ_MOTION 10 11 12 20" + kI6 + " 0.25 -0.5 2");
+  ExpectError(vertices + "EDGE_SE3_OBJ_MOTION 10 11 12 20" + kI6 + " 0.25 -0.5\n", 5,
+              "pose_prev pose_curr motion point I(6) [zx zy zz]");
+}
+
 TEST(GraphIoTest, UnusedVerticesCountTheMotionEdgeCameraAsAUse) {
   Graph graph;
   for (const VertexId id : {0, 1, 2, 3, 4, 9}) graph.vertices[id] = Vertex{};

@@ -167,6 +167,8 @@ inline const char* EdgeKindName(EdgeKind kind) { return kEdgeKindNames[static_ca
 //   v.Integer(name, int64_t&)           a non-negative integer (object id, frame)
 //   v.OptionalOffsetParameter(name, bool& present) g2o's offset-parameter id: absent or `0`
 //   v.OptionalFlag(name, bool&)         a trailing `0`/`1`, absent means 0
+//   v.OptionalMeasurement(Eigen::Vector3d&) a trailing `zx zy zz`, absent means 0 (written
+//                                       only when not 0)
 //   v.Measurement(Pose&) / v.Measurement(Eigen::Vector3d&)
 //   v.Information(Eigen::Matrix3d&) / v.Information(Matrix6d&)
 // A tag has at most one optional field. Besides its fields, each struct says:
@@ -196,6 +198,7 @@ struct IgnoreFields {
   void OptionalFlag(const char*, bool) {}
   template <typename T>
   void Measurement(const T&) {}
+  void OptionalMeasurement(const Eigen::Vector3d&) {}
   template <typename T>
   void Information(const T&) {}
 };
@@ -368,7 +371,8 @@ struct ObjectPointEdge : EdgeDefaults {
   }
 };
 
-// SPEC §1.3 EDGE_SE3_OBJ_MOTION: r = L_curr · m_L − H · L_prev · m_L.
+// SPEC §1.3 EDGE_SE3_OBJ_MOTION: r = L_curr · m_L − H · L_prev · m_L − z; z is the front-end
+// motion edge's, a trailing optional field (0 when absent).
 struct ObjectMotionEdge : EdgeDefaults {
   static constexpr const char* kTag = "EDGE_SE3_OBJ_MOTION";
   VertexId pose_prev = 0;
@@ -376,6 +380,7 @@ struct ObjectMotionEdge : EdgeDefaults {
   VertexId motion = 0;
   VertexId point = 0;
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d measurement = Eigen::Vector3d::Zero();
   int64_t line = 0;
 
   template <typename Self, typename V>
@@ -387,6 +392,7 @@ struct ObjectMotionEdge : EdgeDefaults {
     v.Vertex({"motion", VertexType::kPose, Role::kMotion, {Role::kMotion}}, e.motion);
     v.Vertex({"point", VertexType::kPoint, Role::kObjectPoint, {Role::kObjectPoint}}, e.point);
     v.Information(e.information);
+    v.OptionalMeasurement(e.measurement);
   }
   template <typename RoleOf>
   EdgeKind Kind(const RoleOf&) const {
