@@ -63,10 +63,18 @@ int RunSimulate(int argc, char** argv) {
   parser.Group("output");
   parser.AddString("out", &out_prefix, "writes PREFIX.g2o and PREFIX.gt.txt (required)",
                    "PREFIX");
+  bool check_options = false;
+  parser.AddFlag("check-options", &check_options,
+                 "check the other options and exit (0, or 2 naming the problem) without reading "
+                 "data or writing anything (what a sweep does before it starts)");
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   auto usage_error = [](const std::string& message) { return ErrorExit(message, kExitBadInput); };
   SimulateOptions o;
   if (ReportedProblem(simulate_flags.Finish(&o))) return kExitBadInput;
+  if (check_options) {
+    const Status status = CheckSimulateOptions(o);
+    return status.ok() ? kExitOk : usage_error(status.error().message);
+  }
   if (out_prefix.empty()) return usage_error("--out PREFIX is required");
   if (!o.synthetic && sequence.empty()) return usage_error("--seq NNNN is required (or --synthetic)");
   if (!sequence.empty() && sequence.find_first_not_of("0123456789") == std::string::npos &&

@@ -103,7 +103,8 @@ class Simulator {
         options_(options),
         layout_rng_(options.seed),
         noise_rng_(options.seed ^ 0x9E3779B97F4A7C15ull),
-        outlier_rng_(options.seed ^ 0xD1B54A32D192ED03ull) {}
+        outlier_rng_(options.seed ^ 0xD1B54A32D192ED03ull),
+        edge_noise_rng_(options.seed ^ 0x94D049BB133111EBull) {}
 
   SimulatedScene Run();
 
@@ -136,7 +137,10 @@ class Simulator {
 
   bool Visible(const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_c) const;
   Measurement Measure(const Eigen::Vector3d& p_c);
-  Vector6d Draw(double rotation_sigma, double translation_sigma);
+  static Vector6d Draw(Rng& rng, double rotation_sigma, double translation_sigma);
+  // options.noise_every_edge: the measurement of a prior, motion or smoothing edge is drawn.
+  bool DrawEveryEdge() const { return options_.noise && options_.noise_every_edge; }
+  void Smoothing(int64_t k);
   static Matrix6d PoseInformation(double rotation_sigma, double translation_sigma);
 
   void Camera(int64_t k);
@@ -153,6 +157,7 @@ class Simulator {
   Rng layout_rng_;   // detections, breaks
   Rng noise_rng_;    // measurement, odometry and motion noise
   Rng outlier_rng_;  // which observations are outliers, and their errors
+  Rng edge_noise_rng_;  // prior, motion and smoothing edges (noise_every_edge)
   SimulatedScene out_;
   VertexId next_id_ = 0;
   int64_t next_tracklet_ = 0;
@@ -214,9 +219,9 @@ Simulator::Measurement Simulator::Measure(const Eigen::Vector3d& p_c) {
   return m;
 }
 
-Vector6d Simulator::Draw(double rotation_sigma, double translation_sigma) {
+Vector6d Simulator::Draw(Rng& rng, double rotation_sigma, double translation_sigma) {
   Vector6d xi;
-  for (int i = 0; i < 6; ++i) xi[i] = noise_rng_.Normal() * (i < 3 ? rotation_sigma : translation_sigma);
+  for (int i = 0; i < 6; ++i) xi[i] = rng.Normal() * (i < 3 ? rotation_sigma : translation_sigma);
   return xi;
 }
 
@@ -228,7 +233,8 @@ Matrix6d Simulator::PoseInformation(double rotation_sigma, double translation_si
 }
 
 // Odometry Z = X_{k−1}⁻¹·X_k·Exp(ξ), ξ ~ N(0, Σ): at the truth the residual
-// Log(Z⁻¹·X_{k−1}⁻¹·X_k) = −ξ, whose covariance is Σ = information⁻¹. Initial poses chain Z.
+// Log(Z⁻¹·X_{k−1}⁻¹·X_k) = −ξ, whose covariance is Σ = information⁻¹. Initial poses chain Z
+// from the prior's Z (the true first pose unless noise_every_edge draws it the same way).
 void Simulator::Camera(int64_t k) {
   X_ = scene_.cameras[k];
   X_inv_ = Inverse(X_);
@@ -237,6 +243,10 @@ void Simulator::Camera(int64_t k) {
   label.frame = k;
   if (k == 0) {
     X_initial_ = X_;
+    if (DrawEveryEdge()) {
+      const double sigma = options_.prior_sigma;
+      X_initial_ = Compose(X_, Exp(Draw(edge_noise_rng_, sigma, sigma)));
+    }
     camera_id_ = AddVertex(PoseVertex(X_initial_, label), X_.data);
     PriorEdge prior;
     prior.pose = camera_id_;
@@ -247,7 +257,8 @@ void Simulator::Camera(int64_t k) {
   }
   Pose Z = Compose(Inverse(scene_.cameras[k - 1]), X_);
   if (options_.noise) {
-    Z = Compose(Z, Exp(Draw(options_.odometry_rotation_sigma, options_.odometry_translation_sigma)));
+    Z = Compose(Z, Exp(Draw(noise_rng_, options_.odometry_rotation_sigma,
+                            options_.odometry_translation_sigma)));
   }
   X_initial_ = Compose(X_initial_, Z);
   const VertexId previous = camera_id_;
@@ -380,7 +391,7 @@ VertexId Simulator::Motion(size_t object_index, int64_t k) {
   const Pose H = Compose(object.poses.at(k), Inverse(object.poses.at(k - 1)));
   Pose initial = H;
   if (options_.noise) {
-    initial = Compose(H, Exp(Draw(options_.motion_init_rotation_sigma,
+    initial = Compose(H, Exp(Draw(noise_rng_, options_.motion_init_rotation_sigma,
                                   options_.motion_init_translation_sigma)));
   }
   Label label;
@@ -435,6 +446,11 @@ void Simulator::DynamicPoints(int64_t k) {
     edge.curr = id;
     edge.motion = Motion(track.object, k);
     edge.information = motion_information;
+    if (DrawEveryEdge()) {
+      for (int i = 0; i < 3; ++i) {
+        edge.measurement[i] = edge_noise_rng_.Normal() * options_.motion_sigma;
+      }
+    }
     edge.object = object.id;
     edge.frame = k;
     edge.camera = camera_id_;
@@ -512,6 +528,32 @@ void Simulator::DynamicPoints(int64_t k) {
   dynamic_tracks_ = std::move(kept);
 }
 
+// Smoothing Z = I between consecutive motions of one object: at the truth its residual is the
+// true change of motion, not noise (the paper's constant-motion assumption). noise_every_edge:
+// Z = H_{k−1}⁻¹·H_k·Exp(ξ) instead, a measurement of the true change.
+void Simulator::Smoothing(int64_t k) {
+  for (size_t index = 0; index < scene_.objects.size() && k >= 2; ++index) {
+    const auto a = motions_.find({index, k - 1}), b = motions_.find({index, k});
+    if (a == motions_.end() || b == motions_.end()) continue;
+    BetweenEdge smoothing;
+    smoothing.from = a->second;
+    smoothing.to = b->second;
+    if (DrawEveryEdge()) {
+      Pose H_a, H_b;
+      H_a.data = out_.true_values.at(a->second);
+      H_b.data = out_.true_values.at(b->second);
+      smoothing.measurement =
+          Compose(Compose(Inverse(H_a), H_b),
+                  Exp(Draw(edge_noise_rng_, options_.smoothing_rotation_sigma,
+                           options_.smoothing_translation_sigma)));
+    }
+    smoothing.information = PoseInformation(options_.smoothing_rotation_sigma,
+                                            options_.smoothing_translation_sigma);
+    out_.graph.Edges<BetweenEdge>().push_back(smoothing);
+    ++out_.statistics.smoothing_edges;
+  }
+}
+
 SimulatedScene Simulator::Run() {
   const int64_t frames = static_cast<int64_t>(scene_.cameras.size());
   object_observed_.assign(scene_.objects.size(), false);
@@ -521,19 +563,7 @@ SimulatedScene Simulator::Run() {
     Camera(k);
     StaticPoints(k);
     DynamicPoints(k);
-    // Smoothing Z = I between consecutive motions of one object: at the truth its residual is
-    // the true change of motion, not noise (the paper's constant-motion assumption).
-    for (size_t index = 0; index < scene_.objects.size() && k >= 2; ++index) {
-      const auto a = motions_.find({index, k - 1}), b = motions_.find({index, k});
-      if (a == motions_.end() || b == motions_.end()) continue;
-      BetweenEdge smoothing;
-      smoothing.from = a->second;
-      smoothing.to = b->second;
-      smoothing.information = PoseInformation(options_.smoothing_rotation_sigma,
-                                              options_.smoothing_translation_sigma);
-      out_.graph.Edges<BetweenEdge>().push_back(smoothing);
-      ++out_.statistics.smoothing_edges;
-    }
+    Smoothing(k);
   }
   // Ground truth: every camera; moving objects at every labelled frame of the range.
   for (int64_t k = 0; k < frames; ++k) out_.ground_truth.cameras[k] = scene_.cameras[k];
@@ -562,6 +592,18 @@ Status CheckOptions(const Scene& scene, const SimulateOptions& o) {
   auto bad = [](const std::string& message) { return Status(Error{"", 0, message}); };
   const auto positive = [](double x) { return std::isfinite(x) && x > 0; };
   if (scene.cameras.size() < 2) return bad("a scene needs at least 2 frames");
+  if (Status status = CheckSimulateOptions(o); !status.ok()) return status;
+  if (!positive(scene.camera.focal()) || !positive(scene.camera.baseline)) {
+    return bad("the camera needs a positive focal length and baseline");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status CheckSimulateOptions(const SimulateOptions& o) {
+  auto bad = [](const std::string& message) { return Status(Error{"", 0, message}); };
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0; };
   if (!positive(o.pixel_sigma) || !positive(o.disparity_sigma) ||
       !(std::isfinite(o.point_sigma_floor) && o.point_sigma_floor >= 0)) {
     return bad("pixel and disparity sigmas must be positive, the point sigma floor non-negative");
@@ -590,13 +632,8 @@ Status CheckOptions(const Scene& scene, const SimulateOptions& o) {
   if (!positive(o.camera_height) || !positive(o.facade_distance) || !positive(o.facade_height)) {
     return bad("camera height, facade distance and facade height must be positive");
   }
-  if (!positive(scene.camera.focal()) || !positive(scene.camera.baseline)) {
-    return bad("the camera needs a positive focal length and baseline");
-  }
   return Status::Ok();
 }
-
-}  // namespace
 
 bool UsePaperDensity(const std::string& sequence, SimulateOptions* options) {
   // sequence → {static points per frame, dynamic points per object}: one least-squares step

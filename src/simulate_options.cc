@@ -90,6 +90,9 @@ const OptionTable<SimulateOptions>& SimulateOptionTable() {
            "m, smoothing edge", 1e-12, 1e6),
       Real("prior_sigma", "noise", &O::prior_sigma, "rad and m, prior on the first camera",
            1e-12, 1e6),
+      Switch("noise_every_edge", "noise", &O::noise_every_edge,
+             "also draw the prior, motion and smoothing edges' measurements from their "
+             "information, around the truth"),
       Real("outlier_fraction", "noise", &O::outlier_fraction,
            "fraction of point observations with a gross error", 0, 1),
       Real("outlier_min", "noise", &O::outlier_min, "m, smallest gross error", 0, 1e6),

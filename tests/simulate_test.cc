@@ -220,6 +220,50 @@ TEST(Simulate, NoiseDoesNotChangeTheLayout) {
   EXPECT_EQ(a.true_values, b.true_values);
 }
 
+// noise_every_edge: the prior, motion and smoothing edges become measurements of the truth
+// drawn from their information (χ²/dof ≈ 1 at the truth, as for points and odometry), from a
+// stream of their own: every point and odometry measurement is the same as without it.
+TEST(Simulate, NoiseOnEveryEdgeIsDrawnFromItsInformation) {
+  SimulateOptions off, on;
+  on.noise_every_edge = true;
+  const Scene scene = KittiScene("0003", off);
+  const SimulatedScene a = MustSimulate(scene, off), b = MustSimulate(scene, on);
+  ASSERT_EQ(a.graph.Edges<PointEdge>().size(), b.graph.Edges<PointEdge>().size());
+  for (size_t i = 0; i < a.graph.Edges<PointEdge>().size(); ++i) {
+    ASSERT_EQ(a.graph.Edges<PointEdge>()[i].measurement, b.graph.Edges<PointEdge>()[i].measurement);
+  }
+  const auto [chi2_odo_a, dof_odo_a] = ChiSquared(a.graph, a.true_values, false, true);
+  const auto [chi2_odo_b, dof_odo_b] = ChiSquared(b.graph, b.true_values, false, true);
+  EXPECT_EQ(chi2_odo_a, chi2_odo_b);
+  EXPECT_EQ(a.true_values, b.true_values);
+
+  double chi2_motion = 0, chi2_smoothing = 0;
+  int64_t dof_motion = 0, dof_smoothing = 0;
+  const Values& v = b.true_values;
+  for (const MotionEdge& e : b.graph.Edges<MotionEdge>()) {
+    const Eigen::Vector3d r =
+        Point(v.at(e.curr)) - Iso(v.at(e.motion)) * Point(v.at(e.prev)) - e.measurement;
+    chi2_motion += r.dot(e.information * r);
+    dof_motion += 3;
+  }
+  for (const BetweenEdge& e : b.graph.Edges<BetweenEdge>()) {
+    if (b.graph.vertices.at(e.from).label.role != Role::kMotion) continue;
+    const Vector6d r = Log(Compose(Inverse(e.measurement),
+                                   Compose(Inverse(Pose{v.at(e.from)}), Pose{v.at(e.to)})));
+    chi2_smoothing += r.dot(e.information * r);
+    dof_smoothing += 6;
+  }
+  ASSERT_GT(dof_motion, 10000);
+  ASSERT_GT(dof_smoothing, 600);
+  // χ²/dof has standard deviation √(2/dof): 4σ.
+  EXPECT_NEAR(chi2_motion / dof_motion, 1.0, 4 * std::sqrt(2.0 / dof_motion));
+  EXPECT_NEAR(chi2_smoothing / dof_smoothing, 1.0, 4 * std::sqrt(2.0 / dof_smoothing));
+  // Without the option the motion edges are exact and the prior sits at the truth.
+  EXPECT_LT(Residuals(a.graph, a.true_values).motion, 1e-9);
+  EXPECT_LT(Residuals(a.graph, a.true_values).prior, 1e-12);
+  EXPECT_GT(Residuals(b.graph, b.true_values).prior, 1e-5);
+}
+
 TEST(Simulate, WrittenFileReadsBackLabelled) {
   SimulateOptions options;
   const SimulatedScene sim = MustSimulate(MakeSyntheticScene(options), options);

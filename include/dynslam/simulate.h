@@ -66,6 +66,12 @@ struct SimulateOptions {
   double motion_sigma = 0.1;                  // m: ternary motion edge, isotropic
   double smoothing_rotation_sigma = 0.01;     // rad: smoothing edge
   double smoothing_translation_sigma = 0.1;   // m
+  // Off: the prior, motion and smoothing edges carry their information but no noise (the prior
+  // at the true first pose, z = 0, Z = I: models, not measurements). On (with `noise`): each of
+  // them is a measurement of the truth drawn from its information — the prior Z = X_0·Exp(ξ),
+  // the motion edge's z ~ N(0, σ²I), the smoothing Z = H_{k−1}⁻¹·H_k·Exp(ξ) — from a stream of
+  // its own, so every other draw is the same as with it off (docs/SIMULATOR.md).
+  bool noise_every_edge = false;
   // Outliers: this fraction of point observations gets a gross error, a random direction of
   // length uniform in [outlier_min, outlier_max] metres (the edge's information is unchanged).
   double outlier_fraction = 0.0;
@@ -172,6 +178,8 @@ struct SimulatedScene {
 };
 
 Expected<SimulatedScene> Simulate(const Scene& scene, const SimulateOptions& options);
+// The checks of `Simulate` that need no scene: sigmas positive, probabilities in [0, 1], …
+Status CheckSimulateOptions(const SimulateOptions& options);
 
 // `--density paper`: the tracked points per frame and per moving object that make each of the
 // paper's nine sequences, simulated whole, as large as its Table I (object-centric and
