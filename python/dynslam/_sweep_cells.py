@@ -36,10 +36,11 @@ def _problem(result, what):
     return f"{what} exited {result.returncode}: {lines[-1] if lines else 'no message'}"
 
 
-def simulate(out_dir, scene, seed, frames, density, kitti):
-    """Writes DIR/cells/<scene>_s<seed>/frontend.{g2o,gt.txt} (and simulate.txt, the command's
-    statistics) unless both are there; returns their paths, or raises RuntimeError with the
-    command's message. The dynslam command is this worker's own (_sweep_tools.find_cli)."""
+def simulate(out_dir, scene, seed, frames, density, kitti, flags=()):
+    """Writes OUT_DIR/frontend.{g2o,gt.txt} (and simulate.txt, the command's statistics) unless
+    both are there; returns their paths, or raises RuntimeError with the command's message.
+    `flags`: the simulation set's `dynslam simulate` options. The dynslam command is this
+    worker's own (_sweep_tools.find_cli)."""
     cli = find_cli()
     os.makedirs(out_dir, exist_ok=True)
     prefix = os.path.join(out_dir, "frontend")
@@ -52,7 +53,7 @@ def simulate(out_dir, scene, seed, frames, density, kitti):
         command += ["--frames", frames]
     if density == "paper":
         command += ["--density", "paper"]
-    result = _run(command)
+    result = _run(command + list(flags))
     if result.returncode != 0:
         raise RuntimeError(_problem(result, "dynslam simulate"))
     with open(os.path.join(out_dir, "simulate.txt"), "w") as f:  # its statistics

@@ -1,8 +1,10 @@
-"""A sweep's report: DIR/report.md, DIR/report/{summary,paired}.csv and box plots per metric."""
+"""A sweep's report: DIR/report.md, DIR/report/{summary,paired}.csv, box plots per metric and,
+for a sweep over simulation sets, the sensitivity table and plots (_sweep_sensitivity)."""
 import csv
 import math
 import os
 
+from . import _sweep_sensitivity as sensitivity
 from . import _sweep_stats as st
 
 
@@ -31,8 +33,15 @@ def _write_csv(path, rows):
         writer.writerows(rows)
 
 
+def _setting_name(simulate, options):
+    """How a report names a simulation set and option set ('default' parts left out)."""
+    parts = [p for p in (simulate, options) if p != "default"]
+    return " ".join(parts)
+
+
 def _box_plots(rows, folder):
-    """One PNG per metric: a box per formulation and option set over every finished cell."""
+    """One PNG per metric: a box per formulation, simulation set and option set over every
+    finished cell."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -40,15 +49,16 @@ def _box_plots(rows, folder):
     except ImportError:
         return []
     done = [r for r in rows if r["status"] == "ok"]
-    groups = sorted({(r["options"], r["formulation"]) for r in done})
+    group_of = {id(r): (st.simulation(r), r["options"], r["formulation"]) for r in done}
+    groups = sorted(set(group_of.values()))
     written = []
     for metric, label in st.METRICS:
-        data = [[r[metric] for r in done if (r["options"], r["formulation"]) == g
-                 and r[metric] is not None] for g in groups]
+        data = [[r[metric] for r in done if group_of[id(r)] == g and r[metric] is not None]
+                for g in groups]
         if not any(data):
             continue
         figure, axes = plt.subplots(figsize=(1.2 + 0.9 * len(groups), 3.2))
-        names = [f if o == "default" else f"{f}\n{o}" for o, f in groups]
+        names = [f"{f}\n{_setting_name(s, o)}".strip() for s, o, f in groups]
         axes.boxplot(data, labels=names)
         axes.set_ylabel(label)
         axes.grid(axis="y", alpha=0.3)
@@ -80,30 +90,37 @@ def write(sweep_dir, rows):
              "errors are SPEC §5's mean relative errors.", ""]
     by_group = {}
     for entry in summary:
-        key = (entry["options"], entry["scene"], entry["formulation"])
+        key = ((entry["simulate"], entry["options"]), entry["scene"], entry["formulation"])
         by_group.setdefault(key, {})[entry["metric"]] = entry
-    for options in sorted({k[0] for k in by_group}):
-        groups = {k: v for k, v in by_group.items() if k[0] == options}
+    for simulate, options in sorted({k[0] for k in by_group}):
+        groups = {k: v for k, v in by_group.items() if k[0] == (simulate, options)}
         measured = [(m, l) for m, l in st.METRICS + st.NEES
                     if any(m in entries for entries in groups.values())]
-        lines += [f"## Option set `{options}`", "",
+        title = f"Option set `{options}`"
+        if simulate != "default":
+            title = f"Simulation set `{simulate}`, option set `{options}`"
+        lines += [f"## {title}", "",
                   "| scene | formulation | seeds | " + " | ".join(l for _, l in measured) + " |",
                   "|---|---|---|" + "---|" * len(measured)]
-        for (o, scene, formulation), entries in sorted(groups.items()):
+        for (_, scene, formulation), entries in sorted(groups.items()):
             n = entries[st.METRICS[0][0]]["n"]
             cells = " | ".join(_interval(entries[m]) if m in entries else "–" for m, _ in measured)
             lines.append(f"| {scene} | {formulation} | {n} | {cells} |")
         lines.append("")
     lines += ["## Each formulation against wc", "",
-              "Paired by scene and seed over every scene; median difference (formulation − wc); "
-              "Wilcoxon signed-rank p, Holm-adjusted over the comparisons below; significant "
-              "when the adjusted p < 0.05.", "",
-              "| options | formulation | metric | pairs | median difference | p | p (Holm) | significant |",
-              "|---|---|---|---|---|---|---|---|"]
+              "Paired by scene and seed over every scene; median difference (formulation − wc) "
+              "with its distribution-free 95 % interval; Wilcoxon signed-rank p, Holm-adjusted "
+              "over the comparisons below; significant when the adjusted p < 0.05.", "",
+              "| simulation | options | formulation | metric | pairs | median difference | "
+              "95 % interval | p | p (Holm) | significant |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for c in comparisons:
-        lines.append(f"| {c['options']} | {c['formulation']} | {c['metric']} | {c['pairs']} | "
-                     f"{_number(c['median_difference'])} | {_number(c['p'])} | "
-                     f"{_number(c['p_holm'])} | {'yes' if c['significant'] else 'no'} |")
+        lines.append(f"| {c['simulate']} | {c['options']} | {c['formulation']} | {c['metric']} | "
+                     f"{c['pairs']} | {_number(c['median_difference'])} | "
+                     f"[{_number(c['median_ci_low'])}, {_number(c['median_ci_high'])}] | "
+                     f"{_number(c['p'])} | {_number(c['p_holm'])} | "
+                     f"{'yes' if c['significant'] else 'no'} |")
+    lines += _sensitivity(sweep_dir, folder, comparisons)
     if plots:
         lines += ["", "## Box plots", ""]
         lines += [f"![{os.path.basename(p)}](report/{os.path.basename(p)})" for p in plots]
@@ -111,3 +128,21 @@ def write(sweep_dir, rows):
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+def _sensitivity(sweep_dir, folder, comparisons):
+    """The report's lines on simulation sets: none for a sweep with one set."""
+    if len({c["simulate"] for c in comparisons}) < 2:
+        return []
+    sets, defaults = sensitivity.read_settings(sweep_dir)
+    lines = ["", "## Sensitivity to the simulator's settings", "",
+             "Each formulation against wc per simulation set: median paired difference "
+             "(formulation − wc; negative: better than wc), its 95 % interval and the "
+             "Holm-adjusted p of the table above; bold where significant.", ""]
+    lines += sensitivity.table(comparisons, sets, _number)
+    plots = sensitivity.plots(comparisons, sets, defaults, folder)
+    if plots:
+        lines += ["", "Along each swept axis (the sets that change exactly those options, and "
+                  "`default`):", ""]
+        lines += [f"![{os.path.basename(p)}](report/{os.path.basename(p)})" for p in plots]
+    return lines

@@ -8,10 +8,11 @@ import sqlite3
 
 from ._sweep_cells import METRIC_COLUMNS, NEES_COLUMNS
 
-KEY = ("scene", "seed", "formulation", "options")
+KEY = ("scene", "seed", "formulation", "options", "simulate")
 COLUMNS = [
     ("scene", "TEXT NOT NULL"), ("seed", "INTEGER NOT NULL"), ("formulation", "TEXT NOT NULL"),
-    ("options", "TEXT NOT NULL"), ("status", "TEXT NOT NULL"), ("termination", "TEXT"),
+    ("options", "TEXT NOT NULL"), ("simulate", "TEXT NOT NULL DEFAULT 'default'"),
+    ("status", "TEXT NOT NULL"), ("termination", "TEXT"),
     ("steps", "INTEGER"), ("iterations", "INTEGER"), ("initial_cost", "REAL"),
     ("final_cost", "REAL"), ("solve_time_s", "REAL"), ("linear_solve_time_s", "REAL"),
     ("wall_s", "REAL"), ("weak_directions", "INTEGER"),
@@ -21,24 +22,42 @@ COLUMNS = [
 NAMES = [name for name, _ in COLUMNS]
 
 
+def _create(connection, table):
+    columns = ", ".join(f"{name} {kind}" for name, kind in COLUMNS)
+    connection.execute(
+        f"CREATE TABLE IF NOT EXISTS {table} ({columns}, PRIMARY KEY ({', '.join(KEY)}))")
+
+
 class Results:
     def __init__(self, path):
         self.connection = sqlite3.connect(path)
-        columns = ", ".join(f"{name} {kind}" for name, kind in COLUMNS)
-        self.connection.execute(
-            f"CREATE TABLE IF NOT EXISTS cells ({columns}, PRIMARY KEY ({', '.join(KEY)}))")
-        # A database from an older dynslam: the columns added since, empty in its rows.
+        _create(self.connection, "cells")
         present = {row[1] for row in self.connection.execute("PRAGMA table_info(cells)")}
+        if "simulate" not in present:
+            self._add_to_key(present)
+        # A database from an older dynslam: the columns added since, empty in its rows.
         for name, kind in COLUMNS:
             if name not in present:
                 self.connection.execute(f"ALTER TABLE cells ADD COLUMN {name} {kind.split()[0]}")
         self.connection.commit()
 
+    def _add_to_key(self, present):
+        """A database from before simulation sets: its rows are of the set 'default', and the
+        key gains `simulate` (a new table, the rows copied, in one transaction)."""
+        kept = [name for name in NAMES if name in present]
+        with self.connection:
+            _create(self.connection, "cells_keyed")
+            self.connection.execute(f"INSERT INTO cells_keyed ({', '.join(kept)}) "
+                                    f"SELECT {', '.join(kept)} FROM cells")
+            self.connection.execute("DROP TABLE cells")
+            self.connection.execute("ALTER TABLE cells_keyed RENAME TO cells")
+        present.update(NAMES)
+
     def close(self):
         self.connection.close()
 
     def finished(self):
-        """The keys (scene, seed, formulation, options) of the cells whose status is 'ok'."""
+        """The keys (KEY's order) of the cells whose status is 'ok'."""
         rows = self.connection.execute(
             f"SELECT {', '.join(KEY)} FROM cells WHERE status = 'ok'")
         return set(rows)

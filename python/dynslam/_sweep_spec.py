@@ -12,9 +12,13 @@ from . import _sweep_tools
 FORMULATIONS = ("wc", "oc_a", "oc_b", "oc_c", "hy")
 DENSITIES = ("frontend", "paper")
 PAPER_SEQUENCES = ("0000", "0001", "0002", "0003", "0004", "0005", "0006", "0018", "0020")
-KNOWN_KEYS = ("scenes", "frames", "density", "seeds", "formulations", "options", "kitti")
+KNOWN_KEYS = ("scenes", "frames", "density", "seeds", "formulations", "options", "simulate",
+              "kitti")
 # `dynslam solve` options a sweep sets itself for every cell.
 RESERVED_OPTIONS = ("out", "gt", "check_options", "help")
+# `dynslam simulate` options a sweep sets itself for every scene.
+RESERVED_SIMULATE = ("out", "seq", "kitti", "seed", "frames", "synthetic", "density",
+                     "check_options", "help")
 
 
 class SweepFileError(Exception):
@@ -27,25 +31,30 @@ class SweepFileError(Exception):
 
 @dataclasses.dataclass(frozen=True)
 class Cell:
-    """One solve of the sweep: a formulation of one simulated scene under one option set."""
+    """One solve of the sweep: a formulation of one scene, simulated with one simulation set,
+    under one option set."""
     scene: str
     seed: int
     formulation: str
     options: str  # the option set's name
+    simulate: str = "default"  # the simulation set's name
 
     @property
     def scene_dir(self):
-        return os.path.join("cells", f"{self.scene}_s{self.seed}")
+        """Relative to the sweep's directory; the simulation set 'default' adds no suffix."""
+        suffix = "" if self.simulate == "default" else f"_{self.simulate}"
+        return os.path.join("cells", f"{self.scene}_s{self.seed}{suffix}")
 
     @property
     def key(self):
-        """(scene, seed, formulation, options): the results database's key."""
-        return (self.scene, self.seed, self.formulation, self.options)
+        """(scene, seed, formulation, options, simulate): the results database's key."""
+        return (self.scene, self.seed, self.formulation, self.options, self.simulate)
 
     def row(self, **columns):
         """The cell's row of the results database: its key, its directory and `columns`."""
         return {"scene": self.scene, "seed": self.seed, "formulation": self.formulation,
-                "options": self.options, "cell_dir": self.cell_dir, **columns}
+                "options": self.options, "simulate": self.simulate, "cell_dir": self.cell_dir,
+                **columns}
 
     @property
     def cell_dir(self):
@@ -64,9 +73,14 @@ class Sweep:
     formulations: list
     options: dict  # name -> ["--flag=value", ...] for `dynslam solve`
     kitti: str  # absolute path of the KITTI Tracking data
+    # name -> ["--flag=value", ...] for `dynslam simulate`; {"default": []} when the file has none
+    simulate: dict = dataclasses.field(default_factory=lambda: {"default": []})
+    # name -> the set's table as the file gives it (for the sensitivity report's axes)
+    simulate_settings: dict = dataclasses.field(default_factory=lambda: {"default": {}})
 
     def cells(self):
-        return [Cell(scene, seed, formulation, name)
+        return [Cell(scene, seed, formulation, name, simulation)
+                for simulation in self.simulate
                 for scene in self.scenes for seed in self.seeds
                 for name in self.options for formulation in self.formulations]
 
@@ -105,8 +119,13 @@ def load(path, kitti=None):
             if scene not in PAPER_SEQUENCES:
                 raise SweepFileError(path, "density", f"'paper' is the density of the paper's "
                                      f"sequences ({', '.join(PAPER_SEQUENCES)}), not of {scene!r}")
-    sweep.options = _option_sets(path, table.get("options", {"default": {}}),
-                                 _sweep_tools.find_cli())
+    cli = _sweep_tools.find_cli()
+    sweep.options = _checked_sets(path, "options", table.get("options", {"default": {}}),
+                                  [cli, "solve", "-"], RESERVED_OPTIONS, "`dynslam solve`")
+    simulate = table.get("simulate", {"default": {}})
+    sweep.simulate = _checked_sets(path, "simulate", simulate, [cli, "simulate"],
+                                   RESERVED_SIMULATE, "`dynslam simulate`")
+    sweep.simulate_settings = {name: dict(settings) for name, settings in simulate.items()}
     return sweep
 
 
@@ -188,27 +207,38 @@ def option_flags(options):
     return flags
 
 
-def _option_sets(path, value, cli):
+def _checked_sets(path, section, value, command, reserved, what):
+    """Named sets [SECTION.NAME] of `what`'s options -> their flags, each set checked by
+    `command --check-options` (exit 2 naming the problem)."""
     if not isinstance(value, dict) or not value:
-        raise SweepFileError(path, "options", "must be tables [options.NAME] of solve options")
+        raise SweepFileError(path, section, f"must be tables [{section}.NAME] of {what} options")
     sets = {}
     for name, options in value.items():
-        key = f"options.{name}"
+        key = f"{section}.{name}"
         if not isinstance(options, dict):
-            raise SweepFileError(path, key, "must be a table of `dynslam solve` options")
+            raise SweepFileError(path, key, f"must be a table of {what} options")
         if not name.replace("_", "").replace("-", "").isalnum():
             raise SweepFileError(path, key, "a set's name is letters, digits, '_' and '-'")
         for option, setting in options.items():
-            if option.replace("-", "_") in RESERVED_OPTIONS:
+            if option.replace("-", "_") in reserved:
                 raise SweepFileError(path, f"{key}.{option}", "is set by the sweep itself")
             if not isinstance(setting, (bool, int, float, str)):
                 raise SweepFileError(path, f"{key}.{option}", "must be a string, number or boolean")
         flags = option_flags(options)
-        check = subprocess.run([cli, "solve", "-", "--check-options", *flags],
+        check = subprocess.run([*command, "--check-options", *flags],
                                capture_output=True, text=True)
         if check.returncode != 0:
             problem = check.stderr.strip().splitlines()[0] if check.stderr.strip() else (
                 f"dynslam solve exited {check.returncode}")
-            raise SweepFileError(path, key, problem.removeprefix("error: "))
+            raise SweepFileError(path, _named_key(key, options, problem),
+                                 problem.removeprefix("error: "))
         sets[name] = flags
     return sets
+
+
+def _named_key(key, options, problem):
+    """`key` with the option the command's message names, when it names one of the set's."""
+    for option in options:
+        if "--" + option.replace("_", "-") in problem:
+            return f"{key}.{option}"
+    return key

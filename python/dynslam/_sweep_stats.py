@@ -1,7 +1,8 @@
-"""The statistics of a sweep's report (docs/SWEEPS.md): per scene, option set and formulation the
-mean, standard deviation and 95 % confidence interval over seeds; each formulation against wc,
-paired by scene and seed, by the median difference and a Wilcoxon signed-rank test,
-Holm-corrected over the comparisons made."""
+"""The statistics of a sweep's report (docs/SWEEPS.md): per scene, simulation set, option set and
+formulation the mean, standard deviation and 95 % confidence interval over seeds; each
+formulation against wc, paired by scene and seed, by the median difference (with its
+distribution-free 95 % interval) and a Wilcoxon signed-rank test, Holm-corrected over the
+comparisons made."""
 import math
 
 import numpy as np
@@ -67,49 +68,75 @@ def holm(p_values):
     return adjusted
 
 
+def simulation(row):
+    """The row's simulation set ('default' for rows of a sweep without any)."""
+    return row.get("simulate") or "default"
+
+
+def median_interval(values):
+    """The distribution-free 95 % interval of the median from order statistics (the binomial
+    ranks that cover it with at least 95 %); NaN for fewer than 6 values, which cannot reach it."""
+    x = np.sort(np.asarray(values, dtype=float))
+    n = len(x)
+    if n < 6:
+        return math.nan, math.nan
+    # The largest j with P(B ≤ j) ≤ α/2, B ~ Binomial(n, ½): the interval is the order statistics
+    # of ranks j+1 and n−j (1-based), whose coverage is 1 − 2·P(B ≤ j) ≥ 95 %.
+    low = int(stats.binom.ppf(ALPHA / 2, n, 0.5))
+    if stats.binom.cdf(low, n, 0.5) > ALPHA / 2:
+        low -= 1
+    return float(x[low]), float(x[n - 1 - low])
+
+
 def summarise(rows):
-    """One dict per (scene, options, formulation, metric) over the seeds of finished cells."""
+    """One dict per (scene, simulate, options, formulation, metric) over the seeds of finished
+    cells."""
     groups = {}
     for row in rows:
         if row["status"] == "ok":
-            groups.setdefault((row["scene"], row["options"], row["formulation"]), []).append(row)
+            key = (row["scene"], simulation(row), row["options"], row["formulation"])
+            groups.setdefault(key, []).append(row)
     out = []
-    for (scene, options, formulation), cells in sorted(groups.items()):
+    for (scene, simulate, options, formulation), cells in sorted(groups.items()):
         for metric, _ in METRICS + NEES:
             values = [c.get(metric) for c in cells]
             if metric in dict(NEES) and all(v is None for v in values):
                 continue
-            out.append({"scene": scene, "options": options, "formulation": formulation,
-                        "metric": metric, **describe(values)})
+            out.append({"scene": scene, "simulate": simulate, "options": options,
+                        "formulation": formulation, "metric": metric, **describe(values)})
     return out
 
 
 def paired(rows, baseline="wc"):
-    """Each formulation against `baseline` per option set and metric, paired by scene and seed
-    over every scene: median difference (formulation − baseline), Wilcoxon p, Holm-adjusted p
-    over all the comparisons returned, and whether that is below 0.05."""
+    """Each formulation against `baseline` per simulation set, option set and metric, paired by
+    scene and seed over every scene: median difference (formulation − baseline) and its 95 %
+    interval, Wilcoxon p, Holm-adjusted p over all the comparisons returned, and whether that is
+    below 0.05."""
     by_key = {}
     for row in rows:
         if row["status"] == "ok":
-            by_key[(row["options"], row["formulation"], row["scene"], row["seed"])] = row
+            setting = (simulation(row), row["options"])
+            by_key[(setting, row["formulation"], row["scene"], row["seed"])] = row
     comparisons = []
-    option_sets = sorted({k[0] for k in by_key})
+    settings = sorted({k[0] for k in by_key})
     formulations = sorted({k[1] for k in by_key} - {baseline})
-    for options in option_sets:
+    for setting in settings:
         for formulation in formulations:
             for metric, _ in METRICS:
                 differences = []
-                for (o, f, scene, seed), row in by_key.items():
-                    base = by_key.get((o, baseline, scene, seed))
-                    if o != options or f != formulation or base is None:
+                for (s, f, scene, seed), row in by_key.items():
+                    base = by_key.get((s, baseline, scene, seed))
+                    if s != setting or f != formulation or base is None:
                         continue
                     if row[metric] is None or base[metric] is None:
                         continue
                     differences.append(row[metric] - base[metric])
+                low, high = median_interval(differences)
                 comparisons.append({
-                    "options": options, "formulation": formulation, "baseline": baseline,
-                    "metric": metric, "pairs": len(differences),
+                    "simulate": setting[0], "options": setting[1], "formulation": formulation,
+                    "baseline": baseline, "metric": metric, "pairs": len(differences),
                     "median_difference": float(np.median(differences)) if differences else math.nan,
+                    "median_ci_low": low, "median_ci_high": high,
                     "p": wilcoxon(differences)})
     for comparison, adjusted in zip(comparisons, holm([c["p"] for c in comparisons])):
         comparison["p_holm"] = adjusted

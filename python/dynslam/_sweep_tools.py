@@ -1,6 +1,8 @@
 """Where the package finds the dynslam command and the embedded KITTI Tracking data."""
 import os
+import re
 import shutil
+import subprocess
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__))
 
@@ -33,3 +35,17 @@ def embedded_kitti():
         if candidate and os.path.isdir(os.path.join(candidate, "label_02")):
             return os.path.abspath(candidate)
     return None
+
+
+def simulate_defaults(cli):
+    """`dynslam simulate`'s options and their defaults, from the Simulation options table that
+    `dynslam options` prints (docs/OPTIONS.md): {"pixel_sigma": "0.5", "noise": "on", …}."""
+    result = subprocess.run([cli, "options"], capture_output=True, text=True)
+    defaults, inside = {}, False
+    for line in result.stdout.splitlines():
+        if line.startswith("## "):
+            inside = line.startswith("## Simulation options")
+        row = re.match(r"\| `([a-z0-9_]+)` \| `--[a-z0-9-]+` \| [^|]* \| `([^`]*)` \|", line)
+        if inside and row:
+            defaults[row.group(1)] = row.group(2)
+    return defaults

@@ -1,4 +1,5 @@
-"""Sweeps: scenes × seeds × formulations × option sets, run on Dask (docs/SWEEPS.md).
+"""Sweeps: scenes × seeds × simulation sets × formulations × option sets, run on Dask
+(docs/SWEEPS.md).
 
     python3 -m dynslam.sweep SWEEP.toml --out DIR [--scheduler tcp://HOST:PORT] [--workers N]
     python3 -m dynslam.sweep report DIR
@@ -19,7 +20,7 @@ import time
 
 from dask.distributed import Client, LocalCluster, as_completed
 
-from . import _sweep_cells, _sweep_report, _sweep_spec, _sweep_tools
+from . import _sweep_cells, _sweep_report, _sweep_sensitivity, _sweep_spec, _sweep_tools
 from ._sweep_results import Results
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
@@ -52,8 +53,10 @@ class Progress:
         else:
             what = (f"{row.get('steps')} steps, final cost {row.get('final_cost')}"
                     if row["status"] == "ok" else row.get("error") or row.get("termination"))
-            self.stream.write(f"cell {self.done}/{self.total}: {row['scene']} seed {row['seed']} "
-                              f"{row['formulation']} [{row['options']}]: {row['status']}, {what}\n")
+            simulate = "" if row["simulate"] == "default" else f" ({row['simulate']})"
+            self.stream.write(f"cell {self.done}/{self.total}: {row['scene']}{simulate} seed "
+                              f"{row['seed']} {row['formulation']} [{row['options']}]: "
+                              f"{row['status']}, {what}\n")
         self.stream.flush()
 
 
@@ -74,10 +77,11 @@ def _unique_key(*parts):
 
 
 def _simulate(client, sweep, out, cell):
-    """The front end of `cell`'s scene and seed."""
+    """The front end of `cell`'s scene, seed and simulation set."""
     return client.submit(_sweep_cells.simulate, os.path.join(out, cell.scene_dir), cell.scene,
-                         cell.seed, sweep.frames, sweep.density, sweep.kitti, pure=False,
-                         key=_unique_key("simulate", cell.scene, f"s{cell.seed}"))
+                         cell.seed, sweep.frames, sweep.density, sweep.kitti,
+                         sweep.simulate[cell.simulate], pure=False,
+                         key=_unique_key("simulate", cell.scene, f"s{cell.seed}", cell.simulate))
 
 
 def _submit_cell(client, sweep, out, frontend, cell):
@@ -116,12 +120,13 @@ def _worker_threads(client):
 
 
 def _run_cells(client, sweep, out, cells, results, progress):
-    """Every simulation first (one task per scene and seed), then the cells, largest first and
-    no more at a time than the cluster has worker threads: the order is the client's, since Dask
-    sends a task to a worker as soon as it is submitted. Records every cell."""
+    """Every simulation first (one task per scene, seed and simulation set), then the cells,
+    largest first and no more at a time than the cluster has worker threads: the order is the
+    client's, since Dask sends a task to a worker as soon as it is submitted. Records every
+    cell."""
     by_scene = {}
     for cell in cells:
-        by_scene.setdefault((cell.scene, cell.seed), []).append(cell)
+        by_scene.setdefault((cell.scene, cell.seed, cell.simulate), []).append(cell)
     simulations = {_simulate(client, sweep, out, scene_cells[0]): key
                    for key, scene_cells in by_scene.items()}
     waiting, running, simulating = LargestFirst(), {}, len(simulations)
@@ -174,6 +179,9 @@ def run(sweep, out, scheduler=None, workers=None):
     if lock is None:
         print(f"error: {out} is in use by another sweep (its sweep.lock is held)", file=sys.stderr)
         return EXIT_USAGE
+    if len(sweep.simulate) > 1:
+        _sweep_sensitivity.write_settings(out, sweep.simulate_settings,
+                                          _sweep_tools.simulate_defaults(_sweep_tools.find_cli()))
     results = Results(os.path.join(out, "results.sqlite"))
     finished = results.finished()
     cells = [c for c in sweep.cells()

@@ -52,14 +52,20 @@ def cell_rows(out):
     ("colour = 'red'\n" + SMALL_SWEEP, "colour"),
     (SMALL_SWEEP.replace('"oc_b"', '"oc_z"'), "formulations"),
     (SMALL_SWEEP.replace('"0003"', '"0099"'), "scenes"),
-    (SMALL_SWEEP + "[options.bad]\nmax_iterations = 'many'\n", "options.bad"),
-    (SMALL_SWEEP + "[options.bad]\nminimizer = 'newton'\n", "options.bad"),
-    (SMALL_SWEEP + "[options.bad]\nno_such_option = 1\n", "options.bad"),
+    (SMALL_SWEEP + "[options.bad]\nmax_iterations = 'many'\n", "options.bad.max_iterations"),
+    (SMALL_SWEEP + "[options.bad]\nminimizer = 'newton'\n", "options.bad.minimizer"),
+    (SMALL_SWEEP + "[options.bad]\nno_such_option = 1\n", "options.bad.no_such_option"),
     (SMALL_SWEEP.replace("seeds = [1, 2, 3]", "seeds = []"), "seeds"),
     (SMALL_SWEEP.replace("seeds = [1, 2, 3]", 'seeds = "5:2"'), "seeds"),
     (SMALL_SWEEP.replace('frames = "0:30"', 'frames = "thirty"'), "frames"),
     (SMALL_SWEEP.replace('frames = "0:30"', 'density = "paper"'), "density"),
     (SMALL_SWEEP + "[options.bad]\nout = 'elsewhere'\n", "options.bad.out"),
+    (SMALL_SWEEP + "[simulate.bad]\npixel_sigma = -1.0\n", "simulate.bad.pixel_sigma"),
+    (SMALL_SWEEP + "[simulate.bad]\npixel_sigma = 'small'\n", "simulate.bad.pixel_sigma"),
+    (SMALL_SWEEP + "[simulate.bad]\nno_such_setting = 1\n", "simulate.bad.no_such_setting"),
+    (SMALL_SWEEP + "[simulate.bad]\nseed = 3\n", "simulate.bad.seed"),
+    (SMALL_SWEEP + "[simulate.bad]\noutlier_min = 2.0\noutlier_max = 1.0\n", "simulate.bad"),
+    ("simulate = 3\n" + SMALL_SWEEP, "simulate"),
 ])
 def test_bad_sweep_file_is_one_error_and_runs_nothing(tmp_path, text, key):
     path = write(tmp_path / "bad.toml", text)
@@ -101,6 +107,32 @@ def test_wilcoxon_matches_scipy_and_holm_matches_its_definition():
     assert st.holm([0.01, 0.04, 0.03]) == pytest.approx([0.03, 0.06, 0.06])
     assert st.holm([0.5, math.nan, 0.01]) == pytest.approx([0.5, math.nan, 0.02], nan_ok=True)
     assert st.holm([0.9, 0.8]) == pytest.approx([1.0, 1.0])  # 2 × 0.8 capped at 1
+
+
+def test_the_median_interval_covers_with_at_least_95_percent_and_is_the_narrowest_so():
+    values = list(range(100, 120))  # n = 20: ranks 6 and 15 (1-based), coverage 95.86 %
+    assert st.median_interval(values) == (105.0, 114.0)
+    for n in (6, 7, 10, 11, 30, 90):
+        low, high = st.median_interval(list(range(n)))
+        j = int(low)  # values are their ranks − 1, so j is the lower rank − 1
+        assert high == n - 1 - j
+        assert 1 - 2 * stats.binom.cdf(j, n, 0.5) >= 0.95
+        assert 1 - 2 * stats.binom.cdf(j + 1, n, 0.5) < 0.95  # one rank further in: too narrow
+    assert all(math.isnan(x) for x in st.median_interval([1, 2, 3, 4, 5]))
+
+
+def test_axes_are_the_options_a_set_changes_from_the_defaults():
+    from dynslam._sweep_sensitivity import axes
+    defaults = {"pixel_sigma": "0.5", "disparity_sigma": "0.5", "noise_every_edge": "off",
+                "odometry_rotation_sigma": "0.002"}
+    sets = {"default": {}, "pixel_1": {"pixel_sigma": 1.0, "disparity_sigma": 1.0},
+            "pixel_2": {"pixel_sigma": 2.0, "disparity_sigma": 2.0},
+            "every_edge": {"noise_every_edge": True}, "odometry_x2": {"odometry_rotation_sigma": 0.004},
+            "same": {"pixel_sigma": 0.5}}  # the default value: no axis of its own
+    assert axes(sets, defaults) == {
+        "disparity_sigma + pixel_sigma": [(0.5, "default"), (1.0, "pixel_1"), (2.0, "pixel_2")],
+        "noise_every_edge": [(0.0, "default"), (1.0, "every_edge")],
+        "odometry_rotation_sigma": [(0.002, "default"), (0.004, "odometry_x2")]}
 
 
 def test_a_formulation_against_itself_is_never_significant():
@@ -270,6 +302,69 @@ def test_a_results_database_of_an_older_schema_gains_the_new_columns(tmp_path):
     results.close()
     assert [r["seed"] for r in rows] == [1, 2] and set(rows[0]) == set(NAMES)
     assert rows[0]["weak_directions"] is None and rows[1]["weak_directions"] == 0
+
+
+def test_a_results_database_of_before_simulation_sets_has_them_all_default(tmp_path):
+    from dynslam._sweep_results import Results
+    path = str(tmp_path / "results.sqlite")
+    with sqlite3.connect(path) as connection:  # the key before simulation sets
+        connection.execute("CREATE TABLE cells (scene TEXT NOT NULL, seed INTEGER NOT NULL, "
+                           "formulation TEXT NOT NULL, options TEXT NOT NULL, status TEXT NOT NULL, "
+                           "final_cost REAL, PRIMARY KEY (scene, seed, formulation, options))")
+        connection.execute("INSERT INTO cells VALUES ('0003', 1, 'wc', 'default', 'ok', 2.5)")
+    results = Results(path)
+    results.record({"scene": "0003", "seed": 1, "formulation": "wc", "options": "default",
+                    "simulate": "pixel_2", "status": "ok", "final_cost": 7.0})
+    rows = results.rows()
+    assert results.finished() == {("0003", 1, "wc", "default", "default"),
+                                  ("0003", 1, "wc", "default", "pixel_2")}
+    results.close()
+    assert [(r["simulate"], r["final_cost"]) for r in rows] == [("default", 2.5), ("pixel_2", 7.0)]
+
+
+SIMULATION_SWEEP = """
+scenes = ["synthetic"]
+frames = "0:12"
+seeds = [1, 2, 3, 4, 5, 6]
+formulations = ["wc", "oc_b"]
+[simulate.default]
+[simulate.pixel_2]
+pixel_sigma = 2.0
+[simulate.pixel_4]
+pixel_sigma = 4.0
+"""
+
+
+def test_simulation_sets_reach_the_simulator_and_the_report(tmp_path):
+    out = str(tmp_path / "out")
+    result = run_sweep(write(tmp_path / "s.toml", SIMULATION_SWEEP), "--out", out, "--workers",
+                       "2", timeout=600)
+    assert result.returncode == 0, result.stderr
+    rows = cell_rows(out)
+    assert len(rows) == 36 and all(r["status"] == "ok" for r in rows)
+    assert {r["simulate"] for r in rows} == {"default", "pixel_2", "pixel_4"}
+    frontends = {}
+    for suffix in ("", "_pixel_2", "_pixel_4"):
+        with open(os.path.join(out, "cells", f"synthetic_s1{suffix}", "frontend.g2o"), "rb") as f:
+            frontends[suffix] = f.read()
+    assert len(set(frontends.values())) == 3  # each set its own front end
+    # The same seed and settings give the same file as `dynslam simulate` run by hand.
+    subprocess.run([CLI, "simulate", "--synthetic", "--seed", "1", "--frames", "0:12",
+                    "--pixel-sigma=2.0", "--out", str(tmp_path / "by_hand")], check=True,
+                   capture_output=True)
+    by_hand = (tmp_path / "by_hand.g2o").read_bytes()
+    strip = lambda text: b"\n".join(l for l in text.splitlines() if not l.startswith(b"# arguments"))
+    assert strip(by_hand) == strip(frontends["_pixel_2"])
+    wc = {r["simulate"]: r for r in rows if r["seed"] == 1 and r["formulation"] == "wc"}
+    assert wc["pixel_4"]["cell_dir"] == os.path.join("cells", "synthetic_s1_pixel_4", "wc")
+    with open(os.path.join(out, "report.md")) as f:
+        report = f.read()
+    assert "## Sensitivity to the simulator's settings" in report
+    assert "| default | pixel_4 | pixel_sigma = 4.0 | oc_b |" in report
+    assert os.path.isfile(os.path.join(out, "report", "sensitivity_pixel_sigma.png"))
+    with open(os.path.join(out, "report", "paired.csv")) as f:
+        paired = f.read()
+    assert "pixel_4,default,oc_b,wc,object_motion_mean_rot_deg,6," in paired
 
 
 def test_a_second_sweep_in_the_same_directory_is_refused(tmp_path):
