@@ -4,12 +4,8 @@
 // same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side,
 // then draws the convergence (Fig. 4), trajectory and error plots (scripts/plot_compare.py).
 // Without ground truth it tabulates the solves alone.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -25,14 +21,9 @@
 #include "dynslam/compare.h"
 #include "dynslam/file_io.h"
 #include "dynslam/graph_io.h"
+#include "python_scripts.h"
 #include "solver_flags.h"
 #include "stop_signals.h"
-
-// The repository's scripts/ folder, set by apps/CMakeLists.txt; the environment variable of the
-// same name overrides it at run time (a moved or installed tree).
-#ifndef DYNSLAM_SCRIPTS_DIR
-#define DYNSLAM_SCRIPTS_DIR ""
-#endif
 
 namespace dynslam::cli {
 namespace {
@@ -55,55 +46,19 @@ void PrintProgress(const CompareRow& r, size_t done, size_t total, double elapse
   std::fprintf(stderr, "\n");
 }
 
-// Runs args[0] (an absolute path, no shell: paths may hold spaces or quotes) with stdin from
-// /dev/null and its output on stderr (stdout holds the tables). Returns its exit code, or -1
-// when it could not be started (glibc reports a failed exec here) or did not exit normally.
-// posix_spawn, not fork: the child does not copy the page tables of a process that may hold a
-// whole sequence's solve.
-int RunWithOutputOnStderr(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  pid_t pid = -1;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// DIR/convergence.png, DIR/trajectory.png and, with ground truth, DIR/errors.png, drawn by
-// scripts/plot_compare.py. Plots are a convenience: no python3, matplotlib or script, or a plot
-// that fails, is a warning line (the script writes its own), not a failure.
-void DrawPlots(const std::string& out_dir, const std::vector<CompareRow>& rows,
-               const std::string& gt_path, const std::string& title) {
-  const char* from_environment = std::getenv("DYNSLAM_SCRIPTS_DIR");
-  const fs::path script = fs::path(from_environment && *from_environment ? from_environment
-                                                                         : DYNSLAM_SCRIPTS_DIR) /
-                          "plot_compare.py";
+// DIR/convergence.png, DIR/trajectory.png and, with ground truth, DIR/errors.png (scripts/
+// plot_compare.py), then DIR/report.html (scripts/html_report.py).
+void DrawPlotsAndReport(const std::string& out_dir, const std::vector<CompareRow>& rows,
+                        const std::string& gt_path, const std::string& title, bool plots,
+                        bool report) {
   std::error_code ec;
-  if (!fs::is_regular_file(script, ec)) {
-    std::cerr << "warning: no " << script.string() << " (DYNSLAM_SCRIPTS_DIR), so no plots\n";
-    return;
-  }
   // Absolute paths and --title=: no argument can look like an option.
-  std::vector<std::string> args = {"/usr/bin/python3", script.string(),
-                                   fs::absolute(out_dir, ec).string(), "--title=" + title};
+  std::vector<std::string> args = {fs::absolute(out_dir, ec).string(), "--title=" + title};
   if (!gt_path.empty()) args.push_back("--gt=" + fs::absolute(gt_path, ec).string());
   args.push_back("--labels");
   for (const CompareRow& row : rows) args.push_back(FormulationName(row.formulation));
-  if (RunWithOutputOnStderr(args) == -1) {
-    std::cerr << "warning: could not run /usr/bin/python3 " << script.string() << ", so no plots\n";
-  }
+  if (plots) RunPythonScript("plot_compare.py", args, "plots");
+  if (report) RunPythonScript("html_report.py", args, "report.html");
 }
 
 // Parses --formulations LIST; false after printing the problem.
@@ -120,16 +75,34 @@ bool ParseFormulationList(const std::string& list_text, std::vector<Formulation>
   return true;
 }
 
-// Reports progress on stderr as the library's compare goes.
-void PrintProgressAsItGoes(CompareOptions* options) {
+// Reports progress on stderr as the library's compare goes: one line per formulation (on a
+// terminal, a line that shows the running solve's steps as they go); with `verbose`, a line per
+// step too.
+void PrintProgressAsItGoes(CompareOptions* options, bool verbose) {
+  const bool terminal = isatty(STDERR_FILENO) == 1;
   const auto started = std::chrono::steady_clock::now();
   const size_t total = options->formulations.size();
   auto done = std::make_shared<size_t>(0);
-  options->on_solve_start = [](Formulation formulation, const Graph& built) {
-    std::fprintf(stderr, "[compare] %s: solving %zu variables, %zu edges\n",
-                 FormulationName(formulation), built.NumVariables(), built.NumEdges());
+  auto running = std::make_shared<std::string>();  // "[compare] 2/5 oc_a: "
+  if (verbose) {
+    PrintStepLines(&options->solver, 0.0);
+  } else if (terminal) {
+    options->solver.on_step = [running](const StepRecord& row) {
+      std::fprintf(stderr, "\r\033[K%sstep %d, cost %.10g, %.1f s", running->c_str(), row.step,
+                   row.accepted ? row.trial_cost : row.cost, row.time_s);
+    };
+  }
+  options->on_solve_start = [verbose, terminal, done, total, running](Formulation formulation,
+                                                                      const Graph& built) {
+    *running = "[compare] " + std::to_string(*done + 1) + "/" + std::to_string(total) + " " +
+               FormulationName(formulation) + ": ";
+    if (!verbose && !terminal) return;
+    std::fprintf(stderr, "%s%ssolving %zu variables, %zu edges%s", terminal ? "\r\033[K" : "",
+                 running->c_str(), built.NumVariables(), built.NumEdges(), verbose ? "\n" : "");
   };
-  options->on_row = [started, total, done, out_dir = options->out_dir](const CompareRow& row) {
+  options->on_row = [started, total, done, terminal, out_dir = options->out_dir](
+                        const CompareRow& row) {
+    if (terminal) std::fputs("\r\033[K", stderr);
     if (row.reused) {
       const char* name = FormulationName(row.formulation);
       std::fprintf(stderr, "[compare] %s: the finished solve in %s reused (--resume)\n", name,
@@ -143,14 +116,16 @@ void PrintProgressAsItGoes(CompareOptions* options) {
 
 int RunCompare(int argc, char** argv) {
   std::string front_end_path, gt_path, out_dir, formulation_list = FormulationNames(",");
-  bool no_plots = false;
+  bool no_plots = false, no_report = false, verbose = false;
   ArgParser parser(
       "dynslam compare FRONTEND.g2o --out DIR [--gt GT] [options]",
       "Builds every formulation from one front-end file (identical data), solves each with the\n"
       "same options, scores each against ground truth, and prints the paper's Tables I-III.\n"
       "Writes DIR/tables.md, DIR/tables.csv and, per formulation, DIR/<f>/graph.g2o with the\n"
       "full solve output (SPEC §4); then, when /usr/bin/python3 has matplotlib, DIR/convergence.png,\n"
-      "DIR/trajectory.png and, with --gt, DIR/errors.png (scripts/plot_compare.py).\n"
+      "DIR/trajectory.png and, with --gt, DIR/errors.png (scripts/plot_compare.py), and, when it\n"
+      "has Debian's python3-plotly, DIR/report.html: the scene in 3D, errors, convergence and\n"
+      "tables in one self-contained page (scripts/html_report.py).\n"
       "--max-time limits each formulation's solve. SIGINT (Ctrl-C) or SIGTERM stops the current\n"
       "solve after its step, writes its outputs and the tables of what finished (no plots), and\n"
       "exits 130 or 143; a second signal quits at once.");
@@ -166,6 +141,9 @@ int RunCompare(int argc, char** argv) {
   parser.AddString("formulations", &formulation_list,
                    "comma-separated subset of " + FormulationNames(","), "LIST");
   parser.AddFlag("no-plots", &no_plots, "do not draw DIR/convergence.png, DIR/trajectory.png and DIR/errors.png");
+  parser.AddFlag("no-report", &no_report, "do not write DIR/report.html");
+  parser.AddFlag("verbose", &verbose,
+                 "a line per linear solve of each formulation (else one line per formulation)");
   std::string start = "frontend";
   parser.AddChoice("start", &start, {"frontend", "wc"},
                    "where oc_a, oc_b and oc_c start: the front end's estimates, or wc's solution "
@@ -212,11 +190,10 @@ int RunCompare(int argc, char** argv) {
   }
   if (ReportedProblem(build_flags.Finish(&options.build))) return kExitBadInput;
   if (ReportedProblem(solver_flags.Finish(&options.solver))) return kExitBadInput;
-  PrintProgressAfterOneSecond(&options.solver);
   StopOnSignals(&options.solver);
   options.out_dir = out_dir;
   options.front_end_name = fs::path(front_end_path).filename().string();
-  PrintProgressAsItGoes(&options);
+  PrintProgressAsItGoes(&options, verbose);
 
   ReadOptions read_options;
   ApplyCompat(options.compat, &read_options);
@@ -244,8 +221,9 @@ int RunCompare(int argc, char** argv) {
     }
   }
   std::fputs(tables.markdown.c_str(), stdout);
-  if (!no_plots && StopSignal() == 0) {
-    DrawPlots(out_dir, run->rows, gt_path, fs::path(front_end_path).filename().string());
+  if ((!no_plots || !no_report) && StopSignal() == 0) {
+    DrawPlotsAndReport(out_dir, run->rows, gt_path, fs::path(front_end_path).filename().string(),
+                       !no_plots, !no_report);
   }
   return ExitCodeAfterStopSignal(kExitOk);
 }

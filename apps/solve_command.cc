@@ -1,5 +1,6 @@
 // dynslam solve GRAPH --out DIR [--gt GT] [solver options]   (SPEC §4)
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "dynslam/metrics.h"
 #include "dynslam/solve_output.h"
 #include "dynslam/solver.h"
+#include "python_scripts.h"
 #include "solver_flags.h"
 #include "stop_signals.h"
 
@@ -37,6 +39,7 @@ int RunSolve(int argc, char** argv) {
   std::string gt_path;
   bool skip_unknown = false;
   bool ceres_report = false;
+  bool html_report = false;
   bool repair_information = false;
   bool check_options = false;
   std::string covariance_kinds;
@@ -61,6 +64,10 @@ int RunSolve(int argc, char** argv) {
   parser.AddString("out", &out_dir, "output directory (required)", "DIR");
   parser.AddFlag("ceres-report", &ceres_report,
                  "also print Ceres's full report (problem sizes, linear solver, time per phase)");
+  parser.AddFlag("report", &html_report,
+                 "also write DIR/report.html: the solve's scene in 3D (against --gt), its errors "
+                 "and convergence in one self-contained page (scripts/html_report.py; Debian's "
+                 "python3-plotly)");
   parser.AddString("covariance", &covariance_kinds,
                    "also write covariances.csv: the marginal covariance of every variable of "
                    "these kinds at the solution (cameras, motions, object_poses, points, all; "
@@ -85,7 +92,7 @@ int RunSolve(int argc, char** argv) {
   }
   if (check_options) return kExitOk;
   if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
-  PrintProgressAfterOneSecond(&options);
+  PrintStepLines(&options, 1.0);
   StopOnSignals(&options);
 
   ReadOptions read_options;
@@ -141,6 +148,13 @@ int RunSolve(int argc, char** argv) {
   }
   std::fputs(SolveSummaryText(outputs, out_dir).c_str(), stdout);
   if (ceres_report) std::fputs(report->ceres_report.c_str(), stdout);
+  if (html_report && report->usable) {
+    std::error_code ec;
+    std::vector<std::string> args = {std::filesystem::absolute(out_dir, ec).string(),
+                                     "--title=" + std::filesystem::path(graph_path).filename().string()};
+    if (!gt_path.empty()) args.push_back("--gt=" + std::filesystem::absolute(gt_path, ec).string());
+    RunPythonScript("html_report.py", args, "report.html");
+  }
   if (!report->usable) {
     return ErrorExit("the solve failed: " + report->termination_detail, kExitFailed);
   }

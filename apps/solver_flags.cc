@@ -10,9 +10,9 @@ std::vector<std::string> FormulationChoices() {
   return names;
 }
 
-void PrintProgressAfterOneSecond(SolverOptions* options) {
-  options->on_step = [](const StepRecord& row) {
-    if (row.time_s < 1.0) return;
+void PrintStepLines(SolverOptions* options, double after_s) {
+  options->on_step = [after_s](const StepRecord& row) {
+    if (row.time_s < after_s) return;
     std::fprintf(stderr, "step %4d  iteration %4d  cost %.10e  trial %.10e  lambda %.1e  %s  %.2f s\n",
                  row.step, row.iteration, row.cost, row.trial_cost, row.lambda,
                  row.accepted ? "accepted" : "rejected", row.time_s);

@@ -22,8 +22,8 @@ using ExportFlags = TableFlags<ExportOptions>;
 // Every formulation's name, for AddChoice.
 std::vector<std::string> FormulationChoices();
 
-// Prints one line per linear solve to stderr once a solve has run for more than a second.
-void PrintProgressAfterOneSecond(SolverOptions* options);
+// Prints one line per linear solve to stderr once a solve has run for `after_s` seconds.
+void PrintStepLines(SolverOptions* options, double after_s);
 
 }  // namespace dynslam::cli
 

@@ -176,6 +176,17 @@ if grep -q "^(--start wc" "$work/compare_start/tables.md" &&
 else
   failed=$((failed + 1)); echo "FAIL: compare --start wc: tables.md or oc_b/build.txt does not say so"
 fi
+# Not on a terminal, compare prints one line per formulation; --verbose adds a line per step.
+if [ "$(grep -c '^\[compare\]' "$work/out")" = 2 ] && ! grep -q '^step ' "$work/out"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAIL: compare printed more than a line per formulation"; cat "$work/out"
+fi
+check "compare --verbose" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_verbose" --formulations wc --no-plots --no-report --verbose
+expect_output "compare --verbose prints the steps" "^step    1 "
+expect_output "compare --verbose names the solve" "1/1 wc: solving"
+if [ ! -e "$work/compare_verbose/report.html" ]; then passed=$((passed + 1)); else
+  failed=$((failed + 1)); echo "FAIL: compare --no-report wrote report.html"; fi
 # --resume reads finished solves back (the same tables, with a note); other options solve again.
 cp "$work/compare_start/tables.md" "$work/start_tables.md"
 check "compare --resume" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume
@@ -188,17 +199,17 @@ else
   failed=$((failed + 1)); echo "FAIL: compare --resume: tables.md differs from the run it resumed"
 fi
 check "compare --resume with other solver options" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
-expect_output "compare --resume solves again when the options differ" "oc_b: solving"
+expect_output "compare --resume solves again when the options differ" "oc_b: [a-z_]*, [0-9]* steps, .*[0-9] s;"
 echo "{" > "$work/compare_start/oc_b/summary.json"
 check "compare --resume after a broken summary.json" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
 expect_output "compare --resume keeps wc" "wc: the finished solve in .* reused"
-expect_output "compare --resume solves oc_b again" "oc_b: solving"
+expect_output "compare --resume solves oc_b again" "oc_b: [a-z_]*, [0-9]* steps, .*[0-9] s;"
 # A graph.g2o one byte longer or shorter than the rebuild is another graph: solved again.
 for edit in "append" "truncate"; do
   if [ "$edit" = append ]; then echo "#" >> "$work/compare_start/wc/graph.g2o"
   else truncate -s -1 "$work/compare_start/wc/graph.g2o"; fi
   check "compare --resume after wc/graph.g2o changed ($edit)" 0 "$dynslam" compare "$data/synthetic/frontend.g2o" --gt "$data/synthetic/gt.txt" --out "$work/compare_start" --formulations wc,oc_b --start wc --no-plots --resume --max-iterations 400
-  expect_output "compare --resume solves wc again when its graph differs ($edit)" "wc: solving"
+  expect_output "compare --resume solves wc again when its graph differs ($edit)" "wc: [a-z_]*, [0-9]* steps, .*[0-9] s;"
 done
 check "metrics" 0 "$dynslam" metrics "$work/wc/solution.g2o" "$data/synthetic/gt.txt"
 check "bad --compat" 2 "$dynslam" solve "$data/synthetic/graphs/wc.g2o" --out "$work/x" --compat 9

@@ -3,7 +3,9 @@ for a sweep over simulation sets, the sensitivity table and plots (_sweep_sensit
 import csv
 import math
 import os
+import sys
 
+from . import _html, _sweep_html
 from . import _sweep_sensitivity as sensitivity
 from . import _sweep_stats as st
 
@@ -120,20 +122,32 @@ def write(sweep_dir, rows):
                      f"[{_number(c['median_ci_low'])}, {_number(c['median_ci_high'])}] | "
                      f"{_number(c['p'])} | {_number(c['p_holm'])} | "
                      f"{'yes' if c['significant'] else 'no'} |")
-    lines += _sensitivity(sweep_dir, folder, comparisons)
+    sensitivity_lines, sensitivity_plots = _sensitivity(sweep_dir, folder, comparisons)
+    lines += sensitivity_lines
     if plots:
         lines += ["", "## Box plots", ""]
         lines += [f"![{os.path.basename(p)}](report/{os.path.basename(p)})" for p in plots]
     path = os.path.join(sweep_dir, "report.md")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
+    _write_html(sweep_dir, rows, "\n".join(lines), sensitivity_plots)
     return path
 
 
+def _write_html(sweep_dir, rows, report_md, images):
+    """DIR/report.html; without plotly.js, a warning line instead (report.md has it all)."""
+    try:
+        _html.write(os.path.join(sweep_dir, "report.html"),
+                    _sweep_html.page(sweep_dir, rows, report_md, images))
+    except (_html.ReportError, OSError) as error:
+        print(f"warning: no report.html: {error}", file=sys.stderr)
+
+
 def _sensitivity(sweep_dir, folder, comparisons):
-    """The report's lines on simulation sets: none for a sweep with one set."""
+    """The report's lines on simulation sets and its plots' paths: none for a sweep with one
+    set."""
     if len({c["simulate"] for c in comparisons}) < 2:
-        return []
+        return [], []
     sets, defaults = sensitivity.read_settings(sweep_dir)
     lines = ["", "## Sensitivity to the simulator's settings", "",
              "Each formulation against wc per simulation set: median paired difference "
@@ -145,4 +159,4 @@ def _sensitivity(sweep_dir, folder, comparisons):
         lines += ["", "Along each swept axis (the sets that change exactly those options, and "
                   "`default`):", ""]
         lines += [f"![{os.path.basename(p)}](report/{os.path.basename(p)})" for p in plots]
-    return lines
+    return lines, plots

@@ -196,12 +196,13 @@ def _formulations(path, value):
 
 def option_flags(options):
     """A TOML table of `dynslam solve` options (docs/OPTIONS.md) -> its flags: `max_iterations =
-    5` is `--max-iterations=5`, a switch `extrapolation = false` is `--extrapolation=off`."""
+    5` is `--max-iterations=5`, `report = true` is `--report`, a switch `extrapolation = false`
+    is `--extrapolation=off`."""
     flags = []
     for key, value in options.items():
         flag = "--" + key.replace("_", "-")
         if isinstance(value, bool):
-            flags.append(f"{flag}={'on' if value else 'off'}")
+            flags.append(flag if value else f"{flag}=off")
         else:
             flags.append(f"{flag}={value}")
     return flags

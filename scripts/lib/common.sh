@@ -13,6 +13,7 @@ DYNSLAM_PACKAGES=(
   python3 python3-matplotlib python3-venv locales
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-distributed python3-scipy
+  python3-plotly python3-pil chromium
 )
 
 log() { printf '[%s] %s\n' "$(basename "$0")" "$*" >&2; }
