@@ -1,4 +1,4 @@
-// Whether a solve's uncertainty is honest (issue 45): the normalised estimation error squared
+// Whether a solve's uncertainty is honest: the normalised estimation error squared
 // (NEES) of each camera pose, world-frame motion and object pose against ground truth, weighted
 // by its marginal covariance (covariance.h). docs/COVARIANCE.md.
 //

@@ -1,4 +1,4 @@
-// Marginal covariances of a solved graph's variables (issue 45): the blocks of the inverse of the
+// Marginal covariances of a solved graph's variables: the blocks of the inverse of the
 // information matrix JᵀJ at the solution, J the whitened residuals' Jacobian (SPEC §1.5) — what
 // GTSAM's Marginals gives. Each block is in SPEC §1.3's tangent order: a pose's [ω; ρ] (rad, m)
 // for the right perturbation X·Exp(ξ), a point's x, y, z (m); an object-frame point's in its

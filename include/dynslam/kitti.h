@@ -1,5 +1,5 @@
 // KITTI Tracking ground truth: readers for oxts, label_02 and calib files and the devkit's
-// conversions to camera and object poses (issue 11; conventions in docs/SIMULATOR.md).
+// conversions to camera and object poses (conventions in docs/SIMULATOR.md).
 //
 // Frames. KITTI's 3D labels live in the *rectified camera 0* frame (x right, y down, z forward).
 // A camera pose here is the pose of that frame in a world frame: oxts give the IMU pose in a

@@ -1,4 +1,4 @@
-// A scene simulator that plays the role of a visual front end (issue 11; docs/SIMULATOR.md).
+// A scene simulator that plays the role of a visual front end (docs/SIMULATOR.md).
 //
 // A `Scene` holds true trajectories: camera poses X_k and, per object, its poses L_k (SPEC §0:
 // local → world; the world is the first camera of the range, SPEC §2). It comes from KITTI
