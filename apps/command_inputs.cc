@@ -44,8 +44,10 @@ std::string EmbeddedKittiDir() {
   const fs::path command = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const fs::path dir = command.parent_path();
+    // The build tree, an installed tree, the Python package (scripts/install_python_module).
     for (const fs::path& candidate : {dir / "../../../data/kitti_tracking",
-                                      dir / "../share/dynslam/kitti_tracking"}) {
+                                      dir / "../share/dynslam/kitti_tracking",
+                                      dir / "../data/kitti_tracking"}) {
       if (has_data(candidate)) return candidate.lexically_normal().string();
     }
   }

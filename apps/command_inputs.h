@@ -23,8 +23,9 @@ bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<Cova
 
 // The embedded KITTI Tracking data (oxts/, label_02/, calib/), wherever the command is run from:
 // $DYNSLAM_KITTI, else beside the command — the repository's data/kitti_tracking for a command in
-// build/<type>/apps/, <prefix>/share/dynslam/kitti_tracking for an installed one — else
-// data/kitti_tracking of the working directory.
+// build/<type>/apps/, <prefix>/share/dynslam/kitti_tracking for an installed one, the Python
+// package's data/kitti_tracking for the package's bin/dynslam — else data/kitti_tracking of the
+// working directory.
 std::string EmbeddedKittiDir();
 
 }  // namespace dynslam::cli
