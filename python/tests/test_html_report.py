@@ -13,6 +13,7 @@ import subprocess
 import sys
 
 import pytest
+from test_sweep import SIMULATION_SWEEP
 
 CLI = os.environ.get("DYNSLAM_CLI")
 CHROMIUM = shutil.which("chromium")
@@ -121,18 +122,7 @@ def test_a_page_that_cannot_be_drawn_is_a_warning_not_a_failure(tmp_path, compar
     assert "Traceback" not in result.stderr
 
 
-SWEEP = """
-scenes = ["synthetic"]
-frames = "0:12"
-seeds = [1, 2, 3, 4, 5, 6]
-formulations = ["wc", "oc_b"]
-[simulate.default]
-[simulate.pixel_2]
-pixel_sigma = 2.0
-[options.default]
-[options.paged]
-report = true
-"""
+SWEEP = SIMULATION_SWEEP + "[options.default]\n[options.paged]\nreport = true\n"
 
 
 def test_sweep_page_links_each_cells_page(tmp_path):
@@ -144,7 +134,7 @@ def test_sweep_page_links_each_cells_page(tmp_path):
     assert result.returncode == 0, result.stderr
     page = str(out / "report.html")
     dom = check_page(tmp_path, page, min_plots=8)  # a box plot per metric
-    assert dom.count('href="cells/') == 48
+    assert dom.count('href="cells/') == 72
     assert 'href="cells/synthetic_s1_pixel_2/oc_b_paged/report.html"' in dom
     assert 'href="cells/synthetic_s1/wc/summary.json"' in dom
     assert "Sensitivity to the simulator" in dom
