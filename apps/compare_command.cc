@@ -2,8 +2,8 @@
 //
 // Builds every formulation from one front-end file (identical data, SPEC §3), solves each the
 // same way, scores each the same way (SPEC §5) and prints the paper's Tables I–III side by side,
-// then draws the convergence (Fig. 4), trajectory and error plots (scripts/plot_compare.py).
-// Without ground truth it tabulates the solves alone.
+// then draws the convergence (Fig. 4), trajectory and error plots (scripts/plot_compare.py) and
+// writes report.html (scripts/html_report.py). Without ground truth it tabulates the solves alone.
 #include <unistd.h>
 
 #include <chrono>
