@@ -220,6 +220,31 @@ TEST(Simulate, NoiseDoesNotChangeTheLayout) {
   EXPECT_EQ(a.true_values, b.true_values);
 }
 
+// FNV-1a, 64 bits: a digest that is the same with every standard library.
+uint64_t Fnv1a(const std::string& bytes) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (const unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ull;
+  return hash;
+}
+
+// The options added since (noise_every_edge) change nothing when off: the files are byte for
+// byte those of the simulator before them. The digests are of the graph part of files written by
+// that earlier build (`dynslam simulate --synthetic --seed 1` and `--seq 0003 --frames 0:60
+// --seed 1`, the lines after the '#' header).
+TEST(Simulate, DefaultFilesAreThoseOfTheEarlierSimulator) {
+  SimulateOptions synthetic;
+  synthetic.seed = 1;
+  const std::string a = Written(MustSimulate(MakeSyntheticScene(synthetic), synthetic));
+  EXPECT_EQ(a.size(), 1712503u);
+  EXPECT_EQ(Fnv1a(a), 0xc37419e0cd6fc464ull);
+  SimulateOptions kitti;
+  kitti.seed = 1;
+  kitti.last_frame = 60;
+  const std::string b = Written(MustSimulate(KittiScene("0003", kitti), kitti));
+  EXPECT_EQ(b.size(), 2863986u);
+  EXPECT_EQ(Fnv1a(b), 0x89bf4f0b285e537eull);
+}
+
 // noise_every_edge: the prior, motion and smoothing edges become measurements of the truth
 // drawn from their information (χ²/dof ≈ 1 at the truth, as for points and odometry), from a
 // stream of their own: every point and odometry measurement is the same as without it.
