@@ -136,6 +136,10 @@ def plots(comparisons, sets, defaults, folder):
                 panel.axhline(0, color="black", linewidth=0.8)
                 panel.set_title(f"{label} − wc", fontsize=10)
                 panel.grid(alpha=0.3)
+            xs = [x for x, _ in points]
+            for panel in panels.flat:
+                if min(xs) > 0 and max(xs) >= 4 * min(xs):  # values that double: a log axis
+                    panel.set_xscale("log", base=2)
             for panel in panels[-1]:
                 panel.set_xlabel(axis)
             panels.flat[0].legend(fontsize=8)
