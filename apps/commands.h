@@ -4,6 +4,7 @@
 
 namespace dynslam::cli {
 
+int RunBench(int argc, char** argv);
 int RunBuild(int argc, char** argv);
 int RunCompare(int argc, char** argv);
 int RunMetrics(int argc, char** argv);

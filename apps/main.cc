@@ -18,6 +18,8 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
+    {"bench", "compare solvers on identical graph files: time, memory, final cost, distance "
+              "to the best answer", dynslam::cli::RunBench},
     {"build", "build one formulation (wc, oc_a, oc_b, oc_c, hy) from a front-end file",
      dynslam::cli::RunBuild},
     {"compare", "build, solve and score every formulation; print the paper's Tables I-III",

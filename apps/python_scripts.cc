@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -48,27 +49,51 @@ int RunWithOutputOnStderr(const std::vector<std::string>& args) {
 }
 
 
-}  // namespace
-
-void RunPythonScript(const std::string& script, const std::vector<std::string>& args,
-                     const std::string& what) {
+// $DYNSLAM_SCRIPTS_DIR/script, else the repository's; "" (after `missing`'s line) when absent.
+std::string ScriptPath(const std::string& script, const std::string& missing) {
   namespace fs = std::filesystem;
   const char* from_environment = std::getenv("DYNSLAM_SCRIPTS_DIR");
   const fs::path path = fs::path(from_environment && *from_environment ? from_environment
                                                                        : DYNSLAM_SCRIPTS_DIR) /
                         script;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    std::cerr << "warning: no " << path.string() << " (DYNSLAM_SCRIPTS_DIR), so no " << what
-              << "\n";
-    return;
-  }
-  std::vector<std::string> command = {"/usr/bin/python3", path.string()};
+  if (fs::is_regular_file(path, ec)) return path.string();
+  std::cerr << missing << "no " << path.string() << " (DYNSLAM_SCRIPTS_DIR)\n";
+  return "";
+}
+
+}  // namespace
+
+int RunPythonScript(const std::string& script, const std::vector<std::string>& args,
+                    const std::string& what) {
+  const std::string path = ScriptPath(script, "warning: no " + what + ": ");
+  if (path.empty()) return -1;
+  std::vector<std::string> command = {"/usr/bin/python3", path};
   command.insert(command.end(), args.begin(), args.end());
-  if (RunWithOutputOnStderr(command) == -1) {
-    std::cerr << "warning: could not run /usr/bin/python3 " << path.string() << ", so no "
-              << what << "\n";
+  const int code = RunWithOutputOnStderr(command);
+  if (code == -1) {
+    std::cerr << "warning: could not run /usr/bin/python3 " << path << ", so no " << what << "\n";
   }
+  return code;
+}
+
+int RunPythonCommand(const std::string& script, const std::vector<std::string>& args) {
+  const std::string path = ScriptPath(script, "error: ");
+  if (path.empty()) return 1;
+  std::error_code ec;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  if (!ec) setenv("DYNSLAM_CLI", self.c_str(), 1);
+  std::vector<std::string> command = {"/usr/bin/python3", path};
+  command.insert(command.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : command) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  execv(argv[0], argv.data());
+  std::cerr << "error: could not run /usr/bin/python3 " << path << ": " << std::strerror(errno)
+            << "\n";
+  return 1;
 }
 
 }  // namespace dynslam::cli

@@ -10,9 +10,15 @@ namespace dynslam::cli {
 
 // Runs /usr/bin/python3 SCRIPTS_DIR/script args… (SCRIPTS_DIR: $DYNSLAM_SCRIPTS_DIR, else the
 // repository's scripts/ folder) with stdin from /dev/null and its output on stderr; `what` names
-// the outputs a warning says are missing ("no plots").
-void RunPythonScript(const std::string& script, const std::vector<std::string>& args,
-                     const std::string& what);
+// the outputs a warning says are missing ("no plots"). Returns the script's exit code, or -1
+// when it could not be run (after the warning).
+int RunPythonScript(const std::string& script, const std::vector<std::string>& args,
+                    const std::string& what);
+
+// Runs python3 SCRIPTS_DIR/script args… as a command of its own: stdin, stdout and stderr are
+// this process's, and $DYNSLAM_CLI names this dynslam. Returns its exit code, or 1 after an error
+// line when it could not be run.
+int RunPythonCommand(const std::string& script, const std::vector<std::string>& args);
 
 }  // namespace dynslam::cli
 
