@@ -368,9 +368,10 @@ def test_docstrings_list_every_option():
         dynslam.build)
     simulate_documented = documented_options(dynslam.simulate)
     assert {"frames", "seed", "synthetic", "noise", "static_points"} <= simulate_documented
-    # every flag of `dynslam simulate` but the command's own (where to read and write, density)
+    # every flag of `dynslam simulate` but the command's own (where to read and write, density,
+    # the sweep's check of a simulation set)
     assert command_flags("simulate") - simulate_documented == {"help", "kitti", "seq", "density",
-                                                               "out"}
+                                                               "out", "check_options"}
 
 
 def test_robust_kernels_as_text_reach_the_solver():
