@@ -133,8 +133,8 @@ def commit():
 def table(runs, ratios):
     """Markdown lines: per graph the medians of `runs` (dicts as in the CSV) and the carried
     ratios."""
-    lines = ["| graph | dynslam: steps, process s | ed665dc: process s | GTSAM / dynslam, "
-             "processes | dynslam: solve s to GTSAM's cost | ed665dc: same | GTSAM / dynslam, "
+    lines = ["| graph | dynslam: steps, process s | base: process s | GTSAM / dynslam, "
+             "processes | dynslam: solve s to GTSAM's cost | base: same | GTSAM / dynslam, "
              "solve to GTSAM's cost |", "|---|---|---|---|---|---|---|"]
     for graph in GRAPHS:
         def median(binary, key):

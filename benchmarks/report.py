@@ -11,6 +11,7 @@ import datetime
 import json
 import math
 import pathlib
+import re
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
@@ -58,14 +59,16 @@ def gtsam_section(ratios_csv, reference):
     meta = json.loads(pathlib.Path(str(ratios_csv) + ".json").read_text())
     runs = read(ratios_csv)
     reps = 1 + max(int(run["rep"]) for run in runs)
+    command = re.sub(r"--base \S+", "--base BASE", meta["command"])  # the base build's path
     return [
-        f"    {meta['command']}  # {meta['date']}, commit {meta['commit']}, "
+        f"    {command}  # {meta['date']}, "
         f"{meta.get('machine', 'machine not recorded')}",
         "",
-        "TIMINGS.md (in the reference set) times GTSAM 4.2's `released` profile and dynslam at "
-        "commit ed665dc in one run on one machine of our kind; the script times ed665dc and the "
-        f"current commit in one run here (alternating, medians of {reps}) and carries each ratio: "
-        "ratio × ed665dc's time / the current time. Processes: the whole `solve`, each tool with "
+        "TIMINGS.md (in the reference set) times GTSAM 4.2's `released` profile and dynslam in one "
+        "run on one machine of our kind; the script times that dynslam build (BASE, named in "
+        "`benchmarks/gtsam_ratios.py --help`) and the current one in one run here (alternating, "
+        f"medians of {reps}) and carries each ratio: ratio × the base's time / the current time. "
+        "Processes: the whole `solve`, each tool with "
         "its defaults. Solve to GTSAM's cost: Ceres's preprocessing plus the minimiser time at "
         "the first accepted step at or below GTSAM's `released` final cost. Above 1×, dynslam is "
         "faster.",
@@ -229,8 +232,8 @@ def main():
         f"hand. Reproduce ({duration}):",
         "",
         "    cmake --build build/release --target dynslam_cli factorization_floor",
-        *[f"    {s['command']}  # {s.get('date', 'date not recorded')}, commit "
-          f"{s.get('commit', 'not recorded')}, {s.get('machine', 'machine not recorded')}"
+        *[f"    {s['command']}  # {s.get('date', 'date not recorded')}, "
+          f"{s.get('machine', 'machine not recorded')}"
           for s in sweeps],
         f"    benchmarks/report.py --runs {src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src}",
         "",
@@ -238,11 +241,11 @@ def main():
         "`docs/benchmarks/data/`." + (
             " The data was made by these sweeps in order; a `--scaling-only` sweep leaves runs.csv "
             "and floor.csv as they are and rewrites scaling.csv, or with `--append` adds to it; "
-            "`--scaling` with the first command would remake the scaling rows on its commit too."
+            "`--scaling` with the first command would remake the scaling rows too."
             if len(sweeps) > 1 else "") + ")",
         "",
         f"This page generated {datetime.date.today().isoformat()} on {gtsam_ratios.machine()}; "
-        "each sweep's date, commit and machine are beside its command above; one run per "
+        "each sweep's date and machine are beside its command above; one run per "
         "configuration, "
         "nothing else running. Against GTSAM only one-run ratios (below); the sweep's own "
         "tables have no GTSAM column.",
