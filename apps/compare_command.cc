@@ -51,10 +51,7 @@ void PrintProgress(const CompareRow& r, size_t done, size_t total, double elapse
 void DrawPlotsAndReport(const std::string& out_dir, const std::vector<CompareRow>& rows,
                         const std::string& gt_path, const std::string& title, bool plots,
                         bool report) {
-  std::error_code ec;
-  // Absolute paths and --title=: no argument can look like an option.
-  std::vector<std::string> args = {fs::absolute(out_dir, ec).string(), "--title=" + title};
-  if (!gt_path.empty()) args.push_back("--gt=" + fs::absolute(gt_path, ec).string());
+  std::vector<std::string> args = ReportArguments(out_dir, title, gt_path);
   args.push_back("--labels");
   for (const CompareRow& row : rows) args.push_back(FormulationName(row.formulation));
   if (plots) RunPythonScript("plot_compare.py", args, "plots");

@@ -1,4 +1,4 @@
-// RunPythonScript (python_scripts.h).
+// Running the repository's Python scripts (python_scripts.h).
 #include "python_scripts.h"
 
 #include <fcntl.h>
@@ -27,10 +27,24 @@ namespace {
 // when it could not be started (glibc reports a failed exec here) or did not exit normally.
 // posix_spawn, not fork: the child does not copy the page tables of a process that may hold a
 // whole sequence's solve.
-int RunWithOutputOnStderr(const std::vector<std::string>& args) {
+// args as exec's null-terminated argv (pointing into args).
+std::vector<char*> Argv(const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
   argv.push_back(nullptr);
+  return argv;
+}
+
+// /usr/bin/python3 SCRIPT args…
+std::vector<std::string> PythonCommand(const std::string& script,
+                                       const std::vector<std::string>& args) {
+  std::vector<std::string> command = {"/usr/bin/python3", script};
+  command.insert(command.end(), args.begin(), args.end());
+  return command;
+}
+
+int RunWithOutputOnStderr(const std::vector<std::string>& args) {
+  std::vector<char*> argv = Argv(args);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
@@ -48,7 +62,6 @@ int RunWithOutputOnStderr(const std::vector<std::string>& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-
 // $DYNSLAM_SCRIPTS_DIR/script, else the repository's; "" (after `missing`'s line) when absent.
 std::string ScriptPath(const std::string& script, const std::string& missing) {
   namespace fs = std::filesystem;
@@ -64,13 +77,21 @@ std::string ScriptPath(const std::string& script, const std::string& missing) {
 
 }  // namespace
 
+std::vector<std::string> ReportArguments(const std::string& out_dir, const std::string& title,
+                                         const std::string& gt_path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // Absolute paths and --title=: no argument can look like an option.
+  std::vector<std::string> args = {fs::absolute(out_dir, ec).string(), "--title=" + title};
+  if (!gt_path.empty()) args.push_back("--gt=" + fs::absolute(gt_path, ec).string());
+  return args;
+}
+
 int RunPythonScript(const std::string& script, const std::vector<std::string>& args,
                     const std::string& what) {
   const std::string path = ScriptPath(script, "warning: no " + what + ": ");
   if (path.empty()) return -1;
-  std::vector<std::string> command = {"/usr/bin/python3", path};
-  command.insert(command.end(), args.begin(), args.end());
-  const int code = RunWithOutputOnStderr(command);
+  const int code = RunWithOutputOnStderr(PythonCommand(path, args));
   if (code == -1) {
     std::cerr << "warning: could not run /usr/bin/python3 " << path << ", so no " << what << "\n";
   }
@@ -83,11 +104,8 @@ int RunPythonCommand(const std::string& script, const std::vector<std::string>& 
   std::error_code ec;
   const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
   if (!ec) setenv("DYNSLAM_CLI", self.c_str(), 1);
-  std::vector<std::string> command = {"/usr/bin/python3", path};
-  command.insert(command.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : command) argv.push_back(arg.data());
-  argv.push_back(nullptr);
+  const std::vector<std::string> command = PythonCommand(path, args);
+  std::vector<char*> argv = Argv(command);
   std::fflush(stdout);
   std::fflush(stderr);
   execv(argv[0], argv.data());

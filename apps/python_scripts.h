@@ -8,6 +8,10 @@
 
 namespace dynslam::cli {
 
+// The arguments plot_compare.py and html_report.py share: OUT_DIR --title=TITLE [--gt=GT].
+std::vector<std::string> ReportArguments(const std::string& out_dir, const std::string& title,
+                                         const std::string& gt_path);
+
 // Runs /usr/bin/python3 SCRIPTS_DIR/script args… (SCRIPTS_DIR: $DYNSLAM_SCRIPTS_DIR, else the
 // repository's scripts/ folder) with stdin from /dev/null and its output on stderr; `what` names
 // the outputs a warning says are missing ("no plots"). Returns the script's exit code, or -1

@@ -149,11 +149,8 @@ int RunSolve(int argc, char** argv) {
   std::fputs(SolveSummaryText(outputs, out_dir).c_str(), stdout);
   if (ceres_report) std::fputs(report->ceres_report.c_str(), stdout);
   if (html_report && report->usable) {
-    std::error_code ec;
-    std::vector<std::string> args = {std::filesystem::absolute(out_dir, ec).string(),
-                                     "--title=" + std::filesystem::path(graph_path).filename().string()};
-    if (!gt_path.empty()) args.push_back("--gt=" + std::filesystem::absolute(gt_path, ec).string());
-    RunPythonScript("html_report.py", args, "report.html");
+    const std::string title = std::filesystem::path(graph_path).filename().string();
+    RunPythonScript("html_report.py", ReportArguments(out_dir, title, gt_path), "report.html");
   }
   if (!report->usable) {
     return ErrorExit("the solve failed: " + report->termination_detail, kExitFailed);
