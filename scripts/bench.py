@@ -20,9 +20,12 @@ import json
 import math
 import os
 import re
+import statistics
 import subprocess
 import sys
 import time
+
+import html_report  # beside this script: loads the package's _html module
 
 BACKENDS = ("ceres", "gtsam")
 PROFILES = ("default", "tight", "gtsam")
@@ -33,6 +36,7 @@ METRICS = [("camera", "mean_rot_deg"), ("camera", "mean_trans_m"),
            ("object_motion", "mean_rot_deg"), ("object_motion", "mean_trans_m"),
            ("object_pose", "mean_rot_deg"), ("object_pose", "mean_trans_m")]
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+HTML = html_report.load_html()  # its convergence.csv reader
 
 
 class UsageError(Exception):
@@ -80,7 +84,7 @@ def run_solve(dynslam, graph, flags, gt, out):
     """One `dynslam solve` process: (status, wall seconds, peak RSS in MB)."""
     command = [dynslam, "solve", graph, "--out", out, *flags] + (["--gt", gt] if gt else [])
     started = time.monotonic()
-    with open(os.path.join(os.path.dirname(out), os.path.basename(out) + ".log"), "w") as log:
+    with open(out + ".log", "w") as log:
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
                                    stdin=subprocess.DEVNULL)
         _, status, usage = os.wait4(process.pid, 0)
@@ -124,15 +128,7 @@ def differences(a, b):
 
 def convergence(folder):
     """[(time_s, cost after the step)] of a solve's convergence.csv."""
-    out = []
-    path = os.path.join(folder, "convergence.csv")
-    if not os.path.isfile(path):
-        return out
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            cost = float(row["trial_cost"] if row["accepted"].strip() == "1" else row["cost"])
-            out.append((float(row["time_s"]), cost))
-    return out
+    return [(time_s, cost) for _, time_s, cost in HTML.read_convergence(folder)]
 
 
 def first_time_at(curve, cost, initial):
@@ -142,19 +138,14 @@ def first_time_at(curve, cost, initial):
     return next((t for t, c in curve if c <= cost), None)
 
 
-def median(values):
-    values = sorted(values)
-    n = len(values)
-    return None if n == 0 else (values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2]))
-
-
 def summarise(graph_name, runs, gt):
     """The rows of one graph: `runs` maps solver -> {folder, statuses, walls, rss}."""
     rows, finished = [], {}
     for solver, run in runs.items():
         status = next((s for s in run["statuses"] if s != "ok"), "ok")
         row = {"graph": graph_name, "solver": solver, "status": status,
-               "wall_s": median(run["walls"]), "peak_rss_mb": median(run["rss"])}
+               "wall_s": statistics.median(run["walls"]),
+               "peak_rss_mb": statistics.median(run["rss"])}
         if row["status"] == "ok":
             with open(os.path.join(run["folder"], "summary.json")) as f:
                 summary = json.load(f)

@@ -256,24 +256,29 @@ def errors_figure(folders, labels, quantity, title):
     return {"data": traces, "layout": layout}
 
 
+def read_convergence(folder):
+    """[(step, time_s, cost after the step)] of a solve's convergence.csv (the trial cost of an
+    accepted step, else the cost it started from); [] when there is none."""
+    path = os.path.join(folder, "convergence.csv")
+    if not os.path.isfile(path):
+        return []
+    rows = _rows(path, ("step", "cost", "trial_cost", "accepted", "time_s"))
+    return [(int(r["step"]), _float(r["time_s"], path, line),
+             _float(r["trial_cost"] if r["accepted"].strip() == "1" else r["cost"], path, line))
+            for line, r in enumerate(rows, start=2)]
+
+
 def convergence_figure(folders, labels):
     """Cost above the final one against step and against time (log scale), a line per run."""
     traces = []
     for index, (folder, label) in enumerate(zip(folders, labels)):
-        path = os.path.join(folder, "convergence.csv")
-        if not os.path.isfile(path):
+        rows = read_convergence(folder)
+        if not rows:
             continue
-        rows = _rows(path, ("step", "cost", "trial_cost", "accepted", "time_s"))
-        costs = [(int(r["step"]), _float(r["cost"], path, i + 2),
-                  _float(r["trial_cost"], path, i + 2), r["accepted"].strip() == "1",
-                  _float(r["time_s"], path, i + 2)) for i, r in enumerate(rows)]
-        if not costs:
-            continue
-        after = [trial if accepted else cost for _, cost, trial, accepted, _ in costs]
-        final = min(after)
-        above = [max(c - final, 1e-12) for c in after]
+        final = min(cost for _, _, cost in rows)
+        above = [max(cost - final, 1e-12) for _, _, cost in rows]
         colour = COLOURS[index % len(COLOURS)]
-        for axis, x in (("x", [c[0] for c in costs]), ("x2", [round(c[4], 4) for c in costs])):
+        for axis, x in (("x", [r[0] for r in rows]), ("x2", [round(r[1], 4) for r in rows])):
             traces.append({"type": "scatter", "mode": "lines+markers", "name": label, "x": x,
                            "y": above, "xaxis": axis, "legendgroup": label,
                            "showlegend": axis == "x", "line": {"color": colour}})
