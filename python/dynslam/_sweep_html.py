@@ -15,8 +15,8 @@ def _box_figure(rows, metric, label):
     groups = {}
     for row in rows:
         if row["status"] == "ok" and row.get(metric) is not None:
-            name = " ".join(p for p in (row["formulation"], st.simulation(row), row["options"])
-                            if p != "default")
+            name = f"{row['formulation']} {st.setting_name(st.simulation(row), row['options'])}"
+            name = name.strip()
             groups.setdefault(name, []).append(row[metric])
     traces = [{"type": "box", "name": name, "y": values, "boxpoints": False}
               for name, values in sorted(groups.items())]

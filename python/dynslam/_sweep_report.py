@@ -35,12 +35,6 @@ def _write_csv(path, rows):
         writer.writerows(rows)
 
 
-def _setting_name(simulate, options):
-    """How a report names a simulation set and option set ('default' parts left out)."""
-    parts = [p for p in (simulate, options) if p != "default"]
-    return " ".join(parts)
-
-
 def _box_plots(rows, folder):
     """One PNG per metric: a box per formulation, simulation set and option set over every
     finished cell."""
@@ -60,7 +54,7 @@ def _box_plots(rows, folder):
         if not any(data):
             continue
         figure, axes = plt.subplots(figsize=(1.2 + 0.9 * len(groups), 3.2))
-        names = [f"{f}\n{_setting_name(s, o)}".strip() for s, o, f in groups]
+        names = [f"{f}\n{st.setting_name(s, o)}".strip() for s, o, f in groups]
         axes.boxplot(data, labels=names)
         axes.set_ylabel(label)
         axes.grid(axis="y", alpha=0.3)

@@ -73,6 +73,11 @@ def simulation(row):
     return row.get("simulate") or "default"
 
 
+def setting_name(simulate, options):
+    """How a report names a simulation set and option set ('default' parts left out)."""
+    return " ".join(p for p in (simulate, options) if p != "default")
+
+
 def median_interval(values):
     """The distribution-free 95 % interval of the median from order statistics (the binomial
     ranks that cover it with at least 95 %); NaN for fewer than 6 values, which cannot reach it."""
