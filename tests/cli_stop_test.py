@@ -64,7 +64,9 @@ def check_saved_state(out_dir, work, label, termination):
           f"{label}: termination {summary['termination']!r}, expected {termination!r}")
     check(summary["usable"], f"{label}: usable")
     # No step may have ended before the stop on a busy machine: the state is the initial one.
-    accepted = last_accepted_cost(out_dir) or summary["initial_cost"]
+    accepted = last_accepted_cost(out_dir)
+    if accepted is None:
+        accepted = summary["initial_cost"]
     solution = cost_of_graph_file(os.path.join(out_dir, "solution.g2o"), work)
     check(abs(summary["final_cost"] - accepted) <= 1e-12 * accepted,
           f"{label}: final_cost {summary['final_cost']!r} = last accepted {accepted!r}")
