@@ -10,6 +10,7 @@
 #include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
+#include "dynslam/gtsam_backend.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/metrics.h"
 #include "dynslam/solve_output.h"
@@ -31,6 +32,18 @@ std::string SingularMessage(const CovarianceReport& covariance, const Graph& gra
          " " + DirectionName(graph, first) + "): no covariances.csv; summary.json lists them";
 }
 
+// The GTSAM backend's covariances of `kinds`, attached to *outputs like AttachCovariances.
+Status AttachGtsamCovariances(const GtsamProfile& profile, const SolverOptions& options,
+                              const Graph& graph, const std::vector<CovarianceKind>& kinds,
+                              const std::string& kinds_text, CovarianceReport* covariance,
+                              SolveOutputs* outputs) {
+  Expected<CovarianceReport> computed =
+      GtsamCovariances(graph, profile, options, VerticesOfKinds(graph, kinds));
+  if (!computed.ok()) return computed.error();
+  AttachComputedCovariances(graph, std::move(computed).value(), kinds_text, covariance, outputs);
+  return Status::Ok();
+}
+
 }  // namespace
 
 int RunSolve(int argc, char** argv) {
@@ -43,6 +56,7 @@ int RunSolve(int argc, char** argv) {
   bool repair_information = false;
   bool check_options = false;
   std::string covariance_kinds;
+  std::string backend = "ceres";
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
                    "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
                    "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).\n"
@@ -60,6 +74,11 @@ int RunSolve(int argc, char** argv) {
   parser.AddFlag("repair-information", &repair_information,
                  "replace an information matrix that is not positive definite by the nearest one "
                  "with eigenvalues >= 1e-9 x the largest (each repaired line is reported)");
+  parser.AddString("backend", &backend,
+                   "ceres, or gtsam[:PROFILE]: GTSAM 4.2's optimisers on the same file "
+                   "(released, the default, tight, tight_exact, dogleg, gn; "
+                   "docs/GTSAM_BACKEND.md); gtsam needs a build with it (scripts/build_gtsam)",
+                   "NAME");
   parser.Group("output");
   parser.AddString("out", &out_dir, "output directory (required)", "DIR");
   parser.AddFlag("ceres-report", &ceres_report,
@@ -90,6 +109,9 @@ int RunSolve(int argc, char** argv) {
   if (!CovarianceKindsOfFlag(parser.Given("covariance"), covariance_kinds, &kinds)) {
     return kExitBadInput;
   }
+  Expected<std::optional<GtsamProfile>> gtsam = ParseBackend(backend);
+  if (!gtsam.ok()) return ErrorExit("--backend: " + gtsam.error().message, kExitBadInput);
+  if (*gtsam && !GtsamBackendBuilt()) return ErrorExit(GtsamBackendMissingMessage(), kExitBadInput);
   if (check_options) return kExitOk;
   if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   PrintStepLines(&options, 1.0);
@@ -119,7 +141,8 @@ int RunSolve(int argc, char** argv) {
   if (const std::string items = CompatText(compat); items != "none") {
     outputs.warnings.push_back("--compat " + items + " (SPEC §7, §3.6)");
   }
-  Expected<SolveReport> report = Solve(options, &*graph);
+  Expected<SolveReport> report =
+      *gtsam ? SolveWithGtsam(**gtsam, options, &*graph) : Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();
     if (error.file.empty() && error.line > 0) error.file = graph_path;
@@ -135,8 +158,10 @@ int RunSolve(int argc, char** argv) {
   std::optional<std::string> covariance_problem;
   CovarianceReport covariance;
   if (!kinds.empty() && report->usable) {
-    const Status s =
-        AttachCovariances(*graph, *report, kinds, covariance_kinds, &covariance, &outputs);
+    const Status s = *gtsam ? AttachGtsamCovariances(**gtsam, options, *graph, kinds,
+                                                     covariance_kinds, &covariance, &outputs)
+                            : AttachCovariances(*graph, *report, kinds, covariance_kinds,
+                                                &covariance, &outputs);
     if (!s.ok()) {
       covariance_problem = s.error().ToString();
     } else if (!covariance.weak_directions.empty()) {

@@ -19,6 +19,7 @@
 #include "dynslam/covariance.h"
 #include "dynslam/formulation.h"
 #include "dynslam/graph_io.h"
+#include "dynslam/gtsam_backend.h"
 #include "dynslam/ground_truth.h"
 #include "dynslam/kitti.h"
 #include "dynslam/metrics.h"
@@ -181,7 +182,8 @@ struct PySolveReport {
 // when the solve is over, carrying what it reached as `.report` (termination "interrupted"), so
 // that a loop of solves stops and no work is lost. (Python runs signal handlers only in the main
 // thread: a solve in another thread is not interrupted.)
-PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph) {
+PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph,
+                                   const std::optional<GtsamProfile>& gtsam = std::nullopt) {
   std::optional<py::error_already_set> raised;
   options.should_stop = [&raised] {
     py::gil_scoped_acquire gil;
@@ -190,7 +192,7 @@ PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph) {
   };
   Expected<SolveReport> report = [&] {
     py::gil_scoped_release release;
-    return Solve(options, &graph);
+    return gtsam ? SolveWithGtsam(*gtsam, options, &graph) : Solve(options, &graph);
   }();
   PySolveReport out{Unwrap(std::move(report)), std::move(graph)};
   if (raised) {
@@ -387,7 +389,9 @@ void DefineFunctions(py::module_& m) {
       "solved wc Graph of the same front end to take oc_a/oc_b/oc_c's initial values from "
       "(SPEC §3.5 start wc).\n\nBuild options (keyword arguments):\n" + BuildOptionsDoc();
   static const std::string solve_doc =
-      "solve a copy of the graph; returns a SolveReport.\n\nSolver options (keyword "
+      "solve a copy of the graph; returns a SolveReport. backend='ceres' (the default), or "
+      "'gtsam' / 'gtsam:PROFILE' (GTSAM's optimisers: released, tight, tight_exact, dogleg, "
+      "gn; a build with GTSAM, scripts/build_gtsam).\n\nSolver options (keyword "
       "arguments):\n" + SolverOptionsDoc();
   m.def("build", [](const Graph& front_end, const std::string& formulation, const py::object& gt,
                     const py::object& start, const py::kwargs& options) {
@@ -413,9 +417,12 @@ void DefineFunctions(py::module_& m) {
     return built;
   }, py::arg("frontend"), py::arg("formulation"), py::arg("gt") = py::none(),
      py::arg("start") = py::none(), build_doc.c_str());
-  m.def("solve", [](const Graph& graph, const py::kwargs& options) {
-    return SolveReleasingTheGil(ToSolverOptions(options), graph);
-  }, py::arg("graph"), solve_doc.c_str());
+  m.def("solve", [](const Graph& graph, const std::string& backend, const py::kwargs& options) {
+    Expected<std::optional<GtsamProfile>> gtsam = ParseBackend(backend);
+    if (!gtsam.ok()) throw py::value_error(gtsam.error().message);
+    if (*gtsam && !GtsamBackendBuilt()) throw py::value_error(GtsamBackendMissingMessage());
+    return SolveReleasingTheGil(ToSolverOptions(options), graph, *gtsam);
+  }, py::arg("graph"), py::arg("backend") = "ceres", solve_doc.c_str());
   static const std::string compare_doc =
       "every formulation built from one front end (identical data) and solved the same way, as "
       "`dynslam compare` does. Returns {formulation: {'report': SolveReport, 'metrics': dict or "

@@ -9,7 +9,9 @@ ended and how far that is from the best answer any of them found.
 
 A solver is BACKEND[:PROFILE][[OPTION=VALUE,...]]: `ceres` (the defaults), `ceres:tight` (a
 `--tolerances` profile: default, tight, gtsam), `ceres[max_iterations=50,threads=2]` (any
-`dynslam solve` options). Writes DIR/bench.csv (a row per graph and solver), DIR/bench.png (cost
+`dynslam solve` options); `gtsam`, `gtsam:tight`, `gtsam:dogleg` (GTSAM's optimisers, a
+`--backend gtsam:PROFILE` profile: released, tight, tight_exact, dogleg, gn; needs a dynslam
+built with GTSAM, scripts/build_gtsam). Writes DIR/bench.csv (a row per graph and solver), DIR/bench.png (cost
 above the best answer against time) and DIR/runs/<graph>/<solver>/ (each solve's outputs), and
 prints the table. A solver that fails on a graph is a row whose status says why; the others run
 on. Exit codes: 0 every solve finished, 1 some failed, 2 a bad command line (nothing run).
@@ -51,11 +53,10 @@ def parse_solver(text):
     backend, profile, options = match.groups()
     if backend not in BACKENDS:
         raise UsageError(f"unknown backend '{backend}' in '{text}' (known: {', '.join(BACKENDS)})")
-    if backend == "gtsam":
-        raise UsageError(f"'{text}': this dynslam has no GTSAM backend; the solvers it can "
-                         f"compare are ceres's (ceres, ceres:PROFILE, ceres[OPTION=VALUE,...])")
     flags = []
-    if profile:
+    if backend == "gtsam":  # GTSAM's profiles are checked by `dynslam solve --check-options`
+        flags.append(f"--backend=gtsam:{profile}" if profile else "--backend=gtsam")
+    elif profile:
         if profile not in PROFILES:
             raise UsageError(f"unknown profile '{profile}' in '{text}' (known: "
                              f"{', '.join(PROFILES)})")

@@ -199,7 +199,8 @@ std::string SummaryJson(const SolveOutputs& outputs) {
         {"linear_solve", report.time_linear_solver_s}}},
       {"schur_ordering", report.eliminated_first},
       {"held_constant", report.held_constant},
-      {"solver", SolverJson(report.options_used)},
+      {"solver", report.solver_json.empty() ? SolverJson(report.options_used)
+                                            : JsonValue::parse(report.solver_json)},
       {"warnings", std::move(warnings)}};
   if (outputs.metrics) summary["metrics"] = MetricsToJson(*outputs.metrics);
   if (outputs.covariance) summary["covariance"] = CovarianceJson(outputs);
@@ -299,13 +300,19 @@ Status AttachCovariances(const Graph& solved, const SolveReport& report,
   Expected<CovarianceReport> computed =
       ComputeCovariances(solved, report, VerticesOfKinds(solved, kinds));
   if (!computed.ok()) return computed.error();
-  *covariance = std::move(computed).value();
+  AttachComputedCovariances(solved, std::move(computed).value(), kinds_text, covariance, outputs);
+  return Status::Ok();
+}
+
+void AttachComputedCovariances(const Graph& solved, CovarianceReport computed,
+                               const std::string& kinds_text, CovarianceReport* covariance,
+                               SolveOutputs* outputs) {
+  *covariance = std::move(computed);
   outputs->covariance = covariance;
   outputs->covariance_kinds = kinds_text;
   if (outputs->ground_truth != nullptr && covariance->weak_directions.empty()) {
     outputs->consistency = ComputeConsistency(solved, *covariance, *outputs->ground_truth);
   }
-  return Status::Ok();
 }
 
 }  // namespace dynslam

@@ -73,6 +73,11 @@ Status AttachCovariances(const Graph& solved, const SolveReport& report,
                          const std::vector<CovarianceKind>& kinds, const std::string& kinds_text,
                          CovarianceReport* covariance, SolveOutputs* outputs);
 
+// The same for covariances computed elsewhere (the GTSAM backend's, gtsam_backend.h).
+void AttachComputedCovariances(const Graph& solved, CovarianceReport computed,
+                               const std::string& kinds_text, CovarianceReport* covariance,
+                               SolveOutputs* outputs);
+
 // summary.json's "solver" entry for `options` as a solve used them (no auto left: ResolveAuto),
 // as JSON text. Two solves whose texts are equal ran with the same options.
 std::string SolverOptionsJson(const SolverOptions& options);

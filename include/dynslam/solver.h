@@ -72,6 +72,9 @@ struct SolveReport {
   double time_preprocessor_s = 0;
   std::string eliminated_first;         // what the Schur ordering put in the first group
   SolverOptions options_used;           // the options with every auto resolved (ResolveAuto)
+  // summary.json's "solver" entry as JSON text when another backend solved (gtsam_backend.h);
+  // empty: the entry is options_used.
+  std::string solver_json;
   std::vector<VertexId> held_constant;  // unused vertices and, with fix_first, the first pose
   std::vector<StepRecord> convergence;
   std::vector<std::string> warnings;
