@@ -31,6 +31,20 @@ bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<Cova
   return true;
 }
 
+bool BackendOfFlag(const std::string& text, std::optional<GtsamProfile>* gtsam) {
+  Expected<std::optional<GtsamProfile>> parsed = ParseBackend(text);
+  if (!parsed.ok()) {
+    std::cerr << "error: --backend: " << parsed.error().message << "\n";
+    return false;
+  }
+  if (*parsed && !GtsamBackendBuilt()) {
+    std::cerr << "error: --backend " << text << ": " << GtsamBackendMissingMessage() << "\n";
+    return false;
+  }
+  *gtsam = std::move(parsed).value();
+  return true;
+}
+
 std::string EmbeddedKittiDir() {
   namespace fs = std::filesystem;
   auto has_data = [](const fs::path& dir) {

@@ -8,6 +8,7 @@
 
 #include "dynslam/covariance.h"
 #include "dynslam/ground_truth.h"
+#include "dynslam/gtsam_backend.h"
 #include "dynslam/solve_output.h"
 
 namespace dynslam::cli {
@@ -20,6 +21,11 @@ bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>*
 // --covariance KINDS of solve and compare: *kinds empty when the flag was not `given`. Returns
 // false after printing the problem to stderr; the caller then exits with kExitBadInput.
 bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<CovarianceKind>* kinds);
+
+// --backend NAME of solve and compare (gtsam_backend.h ParseBackend): *gtsam empty for ceres.
+// Returns false after printing the problem to stderr — an unknown name, or gtsam in a build
+// without it (naming scripts/build_gtsam); the caller then exits with kExitBadInput.
+bool BackendOfFlag(const std::string& text, std::optional<GtsamProfile>* gtsam);
 
 // The embedded KITTI Tracking data (oxts/, label_02/, calib/), wherever the command is run from:
 // $DYNSLAM_KITTI, else beside the command — the repository's data/kitti_tracking for a command in

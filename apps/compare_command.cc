@@ -159,12 +159,25 @@ int RunCompare(int argc, char** argv) {
                  "reuse each formulation's finished solve already in DIR (the same built graph "
                  "and solver options, ended by convergence or the step limit) instead of solving "
                  "it again: a long compare that was stopped goes on from the next formulation");
+  std::string backend = "ceres";
+  parser.AddString("backend", &backend,
+                   "ceres, or gtsam[:PROFILE]: every formulation solved by GTSAM 4.2's optimisers "
+                   "(as solve --backend; with --compat dsc the released code's optimisation end "
+                   "to end, docs/GTSAM_BACKEND.md)",
+                   "NAME");
   BuildFlags build_flags(&parser, BuildOptionTable());
   SolverFlags solver_flags(&parser, SolverOptionTable());
   CompatFlags compat_flags(&parser, CompatOptionTable());
   ExportFlags export_flags(&parser, ExportOptionTable());
   if (std::optional<int> exit_code = parser.Parse(argc, argv, 2)) return *exit_code;
   CompareOptions options;
+  std::optional<GtsamProfile> gtsam;
+  if (!BackendOfFlag(backend, &gtsam)) return kExitBadInput;
+  if (gtsam) {
+    options.solve = [profile = *gtsam](const SolverOptions& solver, Graph* graph) {
+      return SolveWithGtsam(profile, solver, graph);
+    };
+  }
   if (ReportedProblem(export_flags.Finish(&options.export_options))) return kExitBadInput;
   if (ReportedProblem(compat_flags.Finish(&options.compat))) return kExitBadInput;
   if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);

@@ -109,9 +109,8 @@ int RunSolve(int argc, char** argv) {
   if (!CovarianceKindsOfFlag(parser.Given("covariance"), covariance_kinds, &kinds)) {
     return kExitBadInput;
   }
-  Expected<std::optional<GtsamProfile>> gtsam = ParseBackend(backend);
-  if (!gtsam.ok()) return ErrorExit("--backend: " + gtsam.error().message, kExitBadInput);
-  if (*gtsam && !GtsamBackendBuilt()) return ErrorExit(GtsamBackendMissingMessage(), kExitBadInput);
+  std::optional<GtsamProfile> gtsam;
+  if (!BackendOfFlag(backend, &gtsam)) return kExitBadInput;
   if (check_options) return kExitOk;
   if (out_dir.empty()) return ErrorExit("--out DIR is required", kExitBadInput);
   PrintStepLines(&options, 1.0);
@@ -142,7 +141,7 @@ int RunSolve(int argc, char** argv) {
     outputs.warnings.push_back("--compat " + items + " (SPEC §7, §3.6)");
   }
   Expected<SolveReport> report =
-      *gtsam ? SolveWithGtsam(**gtsam, options, &*graph) : Solve(options, &*graph);
+      gtsam ? SolveWithGtsam(*gtsam, options, &*graph) : Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();
     if (error.file.empty() && error.line > 0) error.file = graph_path;
@@ -158,10 +157,10 @@ int RunSolve(int argc, char** argv) {
   std::optional<std::string> covariance_problem;
   CovarianceReport covariance;
   if (!kinds.empty() && report->usable) {
-    const Status s = *gtsam ? AttachGtsamCovariances(**gtsam, options, *graph, kinds,
-                                                     covariance_kinds, &covariance, &outputs)
-                            : AttachCovariances(*graph, *report, kinds, covariance_kinds,
-                                                &covariance, &outputs);
+    const Status s = gtsam ? AttachGtsamCovariances(*gtsam, options, *graph, kinds,
+                                                    covariance_kinds, &covariance, &outputs)
+                           : AttachCovariances(*graph, *report, kinds, covariance_kinds,
+                                               &covariance, &outputs);
     if (!s.ok()) {
       covariance_problem = s.error().ToString();
     } else if (!covariance.weak_directions.empty()) {

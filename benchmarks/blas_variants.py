@@ -15,7 +15,7 @@ import subprocess
 import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-REFERENCE = os.path.join(ROOT, "..", "shared", "reference")
+REFERENCE = os.path.join(ROOT, "build", "release", "data", "reference")  # unpacked by CMake
 VARIANTS = {"serial": "/usr/lib/x86_64-linux-gnu/openblas-serial",
             "pthread": "/usr/lib/x86_64-linux-gnu/openblas-pthread"}
 

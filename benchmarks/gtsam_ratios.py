@@ -12,7 +12,7 @@ and for the solve to GTSAM's `released` final cost (Ceres's preprocessing plus t
 at the first accepted step at or below that cost, as TIMINGS.md measures it).
 
     benchmarks/gtsam_ratios.py --base /tmp/dynslam_ed665dc --new build/release/apps/dynslam \
-        [--reference ../shared/reference] [--reps 3] [--out docs/benchmarks/gtsam_ratios.csv]
+        --reference REFERENCE_SET [--reps 3] [--out docs/benchmarks/gtsam_ratios.csv]
 
 Prints a Markdown table (medians of --reps runs) and writes every run to --out, the command,
 date and commit to OUT.json; benchmarks/report.py puts the table into docs/BENCHMARKS.md.
@@ -75,9 +75,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--base", required=True, help="dynslam binary built at ed665dc")
     parser.add_argument("--new", required=True, help="dynslam binary to rate")
-    here = os.path.dirname(os.path.abspath(__file__))
-    parser.add_argument("--reference", default=os.path.join(here, "..", "..", "shared",
-                                                             "reference"))
+    parser.add_argument("--reference", required=True,
+                        help="a reference set with the TIMINGS.md the ratios are carried from")
     parser.add_argument("--reps", type=int, default=3)
     parser.add_argument("--out", help="CSV of every run")
     args = parser.parse_args()

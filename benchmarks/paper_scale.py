@@ -3,12 +3,12 @@
 
 Simulates each sequence at the paper's density (`dynslam simulate --density paper`, fixed seed),
 builds every formulation, then for each graph runs, one after the other: GTSAM's `released`
-profile (`gtsam_ref`; hy: `gtsam_hy`), `dynslam solve` with its defaults, with `--tolerances
+profile (`dynslam solve --backend gtsam`), `dynslam solve` with its defaults, with `--tolerances
 gtsam`, with `--threads N` (the cores this process may use; the sequences of --threads-check),
 and with `--tolerances tight` (the best known optimum: the lowest final cost of all runs).
 Without --gtsam it reports dynslam alone.
 
-    benchmarks/paper_scale.py --gtsam /work/gtsam/bin [--sequences 0003 0005 0020]
+    benchmarks/paper_scale.py --gtsam build/gtsam/apps/dynslam [--sequences 0003 0005 0020]
         [--formulations wc oc_a …] [--out out/paper_scale] [--to-gtsam-cost-only]
 
 With --to-gtsam-cost-only (for graphs whose solves to the optimum take hours, such as 0020's)
@@ -112,12 +112,10 @@ def prepare(cli, sequence, seed, formulations, out):
 
 
 def gtsam_released(args, formulation, graph, out):
-    """GTSAM's `released` run of one graph (gtsam_ref; hy: gtsam_hy) as a row."""
-    tool = os.path.join(args.gtsam, "gtsam_hy" if formulation == "hy" else "gtsam_ref")
-    extra = [] if formulation == "hy" else ["--no-stock-check"]
+    """GTSAM's `released` run of one graph (the GTSAM backend, docs/GTSAM_BACKEND.md) as a row."""
     d = out / "gtsam_released"
-    wall, peak, s = run([tool, "solve", str(graph), "--profile", "released", "--out", str(d),
-                         *extra], str(d))
+    wall, peak, s = run([args.gtsam, "solve", str(graph), "--backend", "gtsam:released", "--out",
+                         str(d)], str(d))
     return {"run": "gtsam_released", "wall_s": wall, "peak_kib": peak,
             "solve_s": s["time_s"]["total"], "steps": s["iterations"],
             "final_cost": s["final_cost"], "to_gtsam_cost_s": s["time_s"]["total"]}
@@ -216,7 +214,8 @@ def main():
     parser.add_argument("--sequences", nargs="+", default=["0003", "0005", "0020"])
     parser.add_argument("--formulations", nargs="+", default=FORMULATIONS, choices=FORMULATIONS)
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--gtsam", help="folder of gtsam_ref and gtsam_hy (build_gtsam.sh's bin/)")
+    parser.add_argument("--gtsam", help="a dynslam built with the GTSAM backend "
+                                        "(scripts/build_gtsam: build/gtsam/apps/dynslam)")
     parser.add_argument("--dynslam", default=str(ROOT / "build/release/apps/dynslam"))
     parser.add_argument("--threads-check", nargs="*", default=["0020"],
                         help="sequences also solved with --threads N, N the cores this process "

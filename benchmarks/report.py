@@ -11,7 +11,6 @@ import datetime
 import json
 import math
 import pathlib
-import re
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
@@ -49,32 +48,6 @@ def fit_exponent(xs, ys):
     mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
     sxx = sum((a - mx) ** 2 for a in lx)
     return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
-
-
-def gtsam_section(ratios_csv, reference):
-    """The one-run ratios against GTSAM carried from the reference set's TIMINGS.md
-    (benchmarks/gtsam_ratios.py)."""
-    if not ratios_csv.exists():
-        return [f"Not measured: {ratios_csv} is missing (run benchmarks/gtsam_ratios.py)."]
-    meta = json.loads(pathlib.Path(str(ratios_csv) + ".json").read_text())
-    runs = read(ratios_csv)
-    reps = 1 + max(int(run["rep"]) for run in runs)
-    command = re.sub(r"--base \S+", "--base BASE", meta["command"])  # the base build's path
-    return [
-        f"    {command}  # {meta['date']}, "
-        f"{meta.get('machine', 'machine not recorded')}",
-        "",
-        "TIMINGS.md (in the reference set) times GTSAM 4.2's `released` profile and dynslam in one "
-        "run on one machine of our kind; the script times that dynslam build (BASE, named in "
-        "`benchmarks/gtsam_ratios.py --help`) and the current one in one run here (alternating, "
-        f"medians of {reps}) and carries each ratio: ratio × the base's time / the current time. "
-        "Processes: the whole `solve`, each tool with "
-        "its defaults. Solve to GTSAM's cost: Ceres's preprocessing plus the minimiser time at "
-        "the first accepted step at or below GTSAM's `released` final cost. Above 1×, dynslam is "
-        "faster.",
-        "",
-        *gtsam_ratios.table(runs, gtsam_ratios.timings_ratios(reference / "TIMINGS.md")),
-    ]
 
 
 def per_step(run, field):
@@ -207,8 +180,6 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", default=str(ROOT / "out" / "benchmarks"))
     parser.add_argument("--out", default=str(ROOT / "docs" / "BENCHMARKS.md"))
-    parser.add_argument("--reference", default=str(ROOT.parent / "shared" / "reference"),
-                        help="the reference set, for its TIMINGS.md")
     args = parser.parse_args()
     src = pathlib.Path(args.runs)
     runs, floors, scaling = read(src / "runs.csv"), read(src / "floor.csv"), read(src / "scaling.csv")
@@ -247,12 +218,9 @@ def main():
         f"This page generated {datetime.date.today().isoformat()} on {gtsam_ratios.machine()}; "
         "each sweep's date and machine are beside its command above; one run per "
         "configuration, "
-        "nothing else running. Against GTSAM only one-run ratios (below); the sweep's own "
-        "tables have no GTSAM column.",
-        "",
-        "## Against GTSAM 4.2: one-run ratios carried from TIMINGS.md",
-        "",
-        *gtsam_section(src / "gtsam_ratios.csv", pathlib.Path(args.reference)),
+        "nothing else running. The sweep's own tables have no GTSAM column: GTSAM is timed "
+        "beside dynslam, in one run, by `dynslam bench` with the GTSAM backend "
+        "(docs/results/GTSAM.md).",
         "",
         "## The floor: one sparse Cholesky factorisation (target: a step ≤ 1.5× the fastest)",
         "",

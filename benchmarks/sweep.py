@@ -221,7 +221,7 @@ def write_csv(path, rows, fields):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--reference", default=str(ROOT.parent / "shared" / "reference"))
+    parser.add_argument("--reference", default=str(ROOT / "build" / "release" / "data" / "reference"))
     parser.add_argument("--graphs", nargs="*", help="graph files (default: every reference graph)")
     parser.add_argument("--configs", nargs="*", help="configuration or linear-solver names")
     parser.add_argument("--quick", action="store_true",

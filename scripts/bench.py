@@ -69,6 +69,20 @@ def parse_solver(text):
     return backend, flags
 
 
+def graph_names(graphs):
+    """Each graph's name in the table: its file's stem, or as many of its last folders as make
+    the names unique (kitti_0003/graphs/oc_b.g2o and synthetic/graphs/oc_b.g2o: kitti_0003/oc_b
+    and synthetic/oc_b, the folder `graphs` left out)."""
+    def parts(graph):
+        path = os.path.splitext(os.path.abspath(graph))[0].split(os.sep)
+        return [p for p in path if p and p != "graphs"]
+    for depth in range(1, 1 + max(len(parts(g)) for g in graphs)):
+        names = {g: "/".join(parts(g)[-depth:]) for g in graphs}
+        if len(set(names.values())) == len(graphs):
+            return names
+    return {g: f"{names[g]}_{i}" for i, g in enumerate(graphs)}  # the same file twice
+
+
 def check_flags(dynslam, solver, flags):
     result = subprocess.run([dynslam, "solve", "-", "--check-options", *flags],
                             capture_output=True, text=True)
@@ -258,10 +272,7 @@ def main(argv=None):
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
 
-    names = {}
-    for graph in args.graphs:
-        stem = os.path.splitext(os.path.basename(graph))[0]
-        names[graph] = stem if stem not in names.values() else f"{stem}_{len(names)}"
+    names = graph_names(args.graphs)
     runs_by_graph = {names[g]: {} for g in args.graphs}
     order = list(solvers)
     for repeat in range(args.repeat):

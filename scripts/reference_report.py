@@ -24,7 +24,7 @@ def load(path):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--reference", default=str(ROOT.parent / "shared" / "reference"))
+    parser.add_argument("--reference", default=str(ROOT / "build" / "release" / "data" / "reference"))
     parser.add_argument("--dynslam", default=str(ROOT / "build" / "release" / "apps" / "dynslam"))
     parser.add_argument("--out", default=str(ROOT / "out" / "reference"))
     parser.add_argument("solve_options", nargs="*", help="passed to dynslam solve (after --)")

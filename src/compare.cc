@@ -290,7 +290,7 @@ Expected<CompareRow> SolveFormulation(const Graph& front_end, Formulation formul
   }
   CompareRow row = BuiltRow(formulation, *graph);
   if (run.on_solve_start) run.on_solve_start(formulation, *graph);
-  Expected<SolveReport> report = Solve(options, &*graph);
+  Expected<SolveReport> report = run.solve ? run.solve(options, &*graph) : Solve(options, &*graph);
   if (!report.ok()) {
     Error error = report.error();
     error.message = std::string(name) + ": " + error.message;

@@ -1,5 +1,5 @@
 // Marginal covariances (include/dynslam/covariance.h) against GTSAM's Marginals at the optimum
-// (../shared/reference/<scene>/gtsam/<f>/tight_exact/marginals.csv, issue 45), each graph solved
+// (data/reference/<scene>/gtsam/<f>/tight_exact/marginals.csv, issue 45), each graph solved
 // by dynslam to its own optimum with the tight rule first.
 #include "dynslam/covariance.h"
 

@@ -1,5 +1,5 @@
-// SPEC §5 metrics: a hand-computed case, and the reference metrics.json of every GTSAM
-// tight_exact solution recomputed from its solution.g2o and the scene's gt.txt.
+// SPEC §5 metrics: a hand-computed case, and the metrics.json of every tight_exact solution of the
+// independent GTSAM program (data/gtsam_ref) recomputed from its solution.g2o and the scene's gt.txt.
 #include "dynslam/metrics.h"
 
 #include <cmath>
@@ -161,7 +161,7 @@ class ReferenceMetricsTest : public ::testing::TestWithParam<testing::ReferenceG
 
 TEST_P(ReferenceMetricsTest, RecomputedFromTheSolutionMatchGtsamMetrics) {
   const testing::ReferenceGraph& reference = GetParam();
-  const std::filesystem::path solve_dir = reference.ProfileDir("tight_exact");
+  const std::filesystem::path solve_dir = reference.IndependentDir("tight_exact");
   Expected<Graph> solution = ReadGraph((solve_dir / "solution.g2o").string());
   ASSERT_TRUE(solution.ok()) << solution.error().ToString();
   const std::filesystem::path scene = std::filesystem::path(reference.graph_path).parent_path().parent_path();
@@ -184,7 +184,7 @@ TEST_P(ReferenceMetricsTest, RecomputedFromTheSolutionMatchGtsamMetrics) {
 TEST_P(ReferenceMetricsTest, PerFrameErrorsAverageToTheTables) {
   const testing::ReferenceGraph& reference = GetParam();
   Expected<Graph> solution =
-      ReadGraph((std::filesystem::path(reference.ProfileDir("tight_exact")) / "solution.g2o").string());
+      ReadGraph((std::filesystem::path(reference.IndependentDir("tight_exact")) / "solution.g2o").string());
   ASSERT_TRUE(solution.ok()) << solution.error().ToString();
   const std::filesystem::path scene = std::filesystem::path(reference.graph_path).parent_path().parent_path();
   Expected<GroundTruth> gt = ReadGroundTruth((scene / "gt.txt").string());
@@ -218,7 +218,7 @@ TEST_P(ReferenceMetricsTest, PerFrameErrorsAverageToTheTables) {
 std::vector<testing::ReferenceGraph> GraphsWithMetrics() {
   std::vector<testing::ReferenceGraph> graphs;
   for (const testing::ReferenceGraph& graph : testing::ReferenceGraphs()) {
-    if (std::filesystem::exists(graph.ProfileDir("tight_exact") + "/metrics.json")) {
+    if (std::filesystem::exists(graph.IndependentDir("tight_exact") + "/metrics.json")) {
       graphs.push_back(graph);
     }
   }

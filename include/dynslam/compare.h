@@ -26,6 +26,9 @@ struct CompareOptions {
   std::vector<Formulation> formulations{std::begin(kAllFormulations), std::end(kAllFormulations)};
   BuildOptions build;
   SolverOptions solver;  // its should_stop also ends the run after the formulation it stopped
+  // Solves each formulation instead of Solve (solver.h) when set: another backend, such as the
+  // GTSAM backend's SolveWithGtsam (gtsam_backend.h). Covariances are still covariance.h's.
+  std::function<Expected<SolveReport>(const SolverOptions&, Graph*)> solve;
   Compat compat;         // applied to `build` and, per formulation, to `solver`
   // SPEC §3.5 start wc: oc_a, oc_b and oc_c start from wc's solution (wc must come first).
   bool start_from_world_centric = false;

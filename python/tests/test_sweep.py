@@ -66,6 +66,7 @@ def cell_rows(out):
     (SMALL_SWEEP + "[simulate.bad]\nseed = 3\n", "simulate.bad.seed"),
     (SMALL_SWEEP + "[simulate.bad]\noutlier_min = 2.0\noutlier_max = 1.0\n", "simulate.bad"),
     ("simulate = 3\n" + SMALL_SWEEP, "simulate"),
+    (SMALL_SWEEP + "[options.bad]\nbackend = 'gtsam:fast'\n", "options.bad.backend"),
 ])
 def test_bad_sweep_file_is_one_error_and_runs_nothing(tmp_path, text, key):
     path = write(tmp_path / "bad.toml", text)
@@ -75,6 +76,21 @@ def test_bad_sweep_file_is_one_error_and_runs_nothing(tmp_path, text, key):
     assert result.stderr.startswith(f"error: {path}: {key}: "), result.stderr
     assert len(result.stderr.strip().splitlines()) == 1, result.stderr
     assert not out.exists()
+
+
+def test_a_backend_this_build_lacks_is_named_before_anything_runs(tmp_path):
+    if CLI is None:
+        pytest.skip("DYNSLAM_CLI is not set")
+    check = subprocess.run([CLI, "solve", "-", "--check-options", "--backend=gtsam"],
+                           capture_output=True, text=True)
+    if check.returncode == 0:
+        pytest.skip("this dynslam has the GTSAM backend")
+    path = write(tmp_path / "gtsam.toml", SMALL_SWEEP + "[options.gtsam]\nbackend = 'gtsam'\n")
+    result = run_sweep(path, "--out", str(tmp_path / "out"))
+    assert result.returncode == 2
+    assert result.stderr.startswith(f"error: {path}: options.gtsam.backend: "), result.stderr
+    assert "scripts/build_gtsam" in result.stderr
+    assert not (tmp_path / "out").exists()
 
 
 def test_missing_and_unreadable_sweep_files(tmp_path):
