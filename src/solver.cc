@@ -19,6 +19,7 @@
 #include "src/edge_costs.h"
 #include "src/blas_runtime.h"
 #include "src/openmp_thread_cap.h"
+#include "src/own_minimizer.h"
 #include "src/segment_gauge.h"
 #include "src/stop_policy.h"
 
@@ -807,6 +808,34 @@ SegmentTimes RunSegments(const SolverOptions& options, const SegmentGauges& gaug
   }
 }
 
+// The rest of Solve with dynslam's own loop (own_minimizer.h) in place of Ceres's minimiser.
+static SolveReport FinishOwnLoop(const SolverOptions& options, const StopPolicy& policy,
+                          StopPolicy::Clock::time_point start, Assembly* assembly,
+                          SolveReport report, Graph* graph) {
+  const ScopedOpenMpThreadCap cap(options.threads);
+  const auto minimizer_start = StopPolicy::Clock::now();
+  const OwnMinimizerResult result =
+      MinimizeWithOwnLoop(&assembly->problem(), options, policy, minimizer_start, &report.convergence);
+  report.time_minimizer_s =
+      std::chrono::duration<double>(StopPolicy::Clock::now() - minimizer_start).count();
+  report.time_total_s = std::chrono::duration<double>(StopPolicy::Clock::now() - start).count();
+  report.time_preprocessor_s = report.time_total_s - report.time_minimizer_s;
+  report.time_evaluation_s = result.evaluation_s;
+  report.time_linear_solver_s = result.linear_solve_s;
+  report.steps = result.linear_solves;
+  report.iterations = static_cast<int>(std::count_if(
+      report.convergence.begin(), report.convergence.end(),
+      [](const StepRecord& row) { return row.accepted; }));
+  report.termination = result.termination;
+  report.termination_detail = result.detail;
+  report.usable = result.usable;
+  report.ceres_report = "dynslam_lm: dynslam's own loop; Ceres evaluated the cost functions only";
+  report.final_cost_by_kind = assembly->Evaluate();
+  report.final_cost = TotalCost(report.final_cost_by_kind);
+  assembly->WriteBack(graph);
+  return report;
+}
+
 Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   const auto start = ConvergenceRecorder::Clock::now();
   const SolverOptions options = ResolveAuto(requested, *graph);
@@ -879,6 +908,9 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
         "this process's BLAS is OpenBLAS built without locking (libopenblas0-serial), unsafe "
         "for concurrent solves: this solve waited for another to finish (install "
         "libopenblas0-pthread, docs/DEPENDENCIES.md)");
+  }
+  if (options.minimizer == MinimizerType::kDynslamLm) {
+    return FinishOwnLoop(options, policy, start, &assembly, std::move(report), graph);
   }
   const SegmentTimes times =
       RunSegments(options, gauges, policy, &ceres_options, &recorder, &assembly, &summary);

@@ -8,6 +8,7 @@ const char* Name(MinimizerType type) {
   switch (type) {
     case MinimizerType::kLevenbergMarquardt: return "lm";
     case MinimizerType::kDogleg: return "dogleg";
+    case MinimizerType::kDynslamLm: return "dynslam_lm";
     case MinimizerType::kAuto: return "auto";
   }
   return "?";

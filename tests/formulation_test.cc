@@ -487,7 +487,7 @@ TEST(FormulationEdgeCaseTest, LabelledMotionInNoMotionEdgeIsDroppedAndReported) 
 // dropped), 17 dynamic points are in no motion edge. Counts, not report lines, checked here.
 TEST(FormulationEdgeCaseTest, SyntheticSceneSegmentsWithExactCounts) {
   std::optional<std::pair<Graph, GroundTruth>> synthetic = ReadSyntheticScene();
-  if (!synthetic) GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
+  ASSERT_TRUE(synthetic.has_value()) << "no synthetic scene under " << testing::ReferenceDir();
   const Graph* front_end = &synthetic->first;
   const GroundTruth* gt = &synthetic->second;
 
@@ -550,7 +550,7 @@ class ObjectInitTest : public ::testing::Test {
  protected:
   void SetUp() override {
     std::optional<std::pair<Graph, GroundTruth>> synthetic = ReadSyntheticScene();
-    if (!synthetic) GTEST_SKIP() << "no synthetic scene under " << testing::ReferenceDir();
+    ASSERT_TRUE(synthetic.has_value()) << "no synthetic scene under " << testing::ReferenceDir();
     front_end_ = std::move(synthetic->first);
     gt_ = std::move(synthetic->second);
   }

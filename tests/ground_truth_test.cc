@@ -171,7 +171,7 @@ TEST_F(GroundTruthTest, ReadsTheReferenceScenes) {
       EXPECT_NEAR(l->rotation().w(), 0.70710678118654757, 1e-16);
     }
   }
-  if (scenes == 0) GTEST_SKIP() << "no reference scenes under " << testing::ReferenceDir();
+  ASSERT_GT(scenes, 0) << "no reference scenes under " << testing::ReferenceDir();
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 namespace dynslam {
 
 // kAuto chooses per graph (ResolveAuto, solver.h).
-enum class MinimizerType { kLevenbergMarquardt, kDogleg, kAuto };
+enum class MinimizerType { kLevenbergMarquardt, kDogleg, kDynslamLm, kAuto };
 enum class LinearSolverType {
   kSparseSchur,
   kSparseNormalCholesky,
@@ -109,11 +109,13 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
   static const OptionTable<O> table = [] {
     OptionTable<O> t = {
         Choice("minimizer", "solver", &O::minimizer,
-               {MinimizerType::kAuto, MinimizerType::kLevenbergMarquardt, MinimizerType::kDogleg},
+               {MinimizerType::kAuto, MinimizerType::kLevenbergMarquardt, MinimizerType::kDogleg,
+                MinimizerType::kDynslamLm},
                Name,
-               "trust-region strategy: Levenberg-Marquardt or Powell's dogleg; auto: lm for "
-               "oc_a, oc_b, oc_c and pose graphs, dogleg for wc, hy and other graphs with points "
-               "(docs/SOLVER.md)"),
+               "trust-region strategy: Ceres's Levenberg-Marquardt or Powell's dogleg, or "
+               "dynslam_lm: dynslam's own LM loop over the same cost functions (CHOLMOD, no "
+               "extrapolation or gauge moves yet; docs/SOLVER.md); auto: lm for oc_a, oc_b, oc_c "
+               "and pose graphs, dogleg for wc, hy and other graphs with points"),
         Choice("linear_solver", "solver", &O::linear_solver,
                {LinearSolverType::kAuto, LinearSolverType::kSparseSchur,
                 LinearSolverType::kSparseNormalCholesky, LinearSolverType::kIterativeSchur,
