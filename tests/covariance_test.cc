@@ -18,32 +18,8 @@ namespace dynslam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ReadMarginals;
 using testing::ReferenceGraph;
-
-// id → covariance, from `id,dim,` and the upper triangle row by row.
-std::map<VertexId, Eigen::MatrixXd> ReadMarginals(const std::string& path) {
-  std::map<VertexId, Eigen::MatrixXd> out;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::stringstream fields(line);
-    std::string field;
-    std::getline(fields, field, ',');
-    const VertexId id = std::stoll(field);
-    std::getline(fields, field, ',');
-    const int dim = std::stoi(field);
-    Eigen::MatrixXd m(dim, dim);
-    for (int r = 0; r < dim; ++r) {
-      for (int c = r; c < dim; ++c) {
-        std::getline(fields, field, ',');
-        m(r, c) = m(c, r) = std::stod(field);
-      }
-    }
-    out[id] = m;
-  }
-  return out;
-}
 
 struct Solved {
   Graph graph;

@@ -9,9 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "dynslam/graph.h"
 #include "src/json_io.h"
@@ -99,6 +104,31 @@ inline double Chi2AboveTightExact(double final_cost, const std::string& tight_ex
   Expected<JsonValue> summary =
       ReadJsonFile((std::filesystem::path(tight_exact_dir) / "summary.json").string());
   return summary.ok() ? 2 * (final_cost - NumberAt(*summary, {"final_cost"})) : std::nan("");
+}
+
+// A reference marginals.csv: id → covariance, from `id,dim,` and the upper triangle row by row.
+inline std::map<VertexId, Eigen::MatrixXd> ReadMarginals(const std::string& path) {
+  std::map<VertexId, Eigen::MatrixXd> out;
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::string field;
+    std::getline(fields, field, ',');
+    const VertexId id = std::stoll(field);
+    std::getline(fields, field, ',');
+    const int dim = std::stoi(field);
+    Eigen::MatrixXd m(dim, dim);
+    for (int r = 0; r < dim; ++r) {
+      for (int c = r; c < dim; ++c) {
+        std::getline(fields, field, ',');
+        m(r, c) = m(c, r) = std::stod(field);
+      }
+    }
+    out[id] = m;
+  }
+  return out;
 }
 
 inline double RelativeDifference(double value, double reference) {
