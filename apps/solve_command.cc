@@ -58,8 +58,9 @@ int RunSolve(int argc, char** argv) {
   std::string covariance_kinds;
   std::string backend = "ceres";
   ArgParser parser("dynslam solve GRAPH --out DIR [--gt GT] [options]",
-                   "Solves a graph file (SPEC §1) with Ceres and writes solution.g2o, cameras.csv,\n"
-                   "motions.csv, object_poses.csv, convergence.csv and summary.json (SPEC §4).\n"
+                   "Solves a graph file (SPEC §1) with Ceres (or GTSAM: --backend) and writes\n"
+                   "solution.g2o, cameras.csv, motions.csv, object_poses.csv, convergence.csv\n"
+                   "and summary.json (SPEC §4).\n"
                    "SIGINT (Ctrl-C) or SIGTERM stops the solve after its current step and writes\n"
                    "them for the last accepted state (termination \"interrupted\", exit 130 or\n"
                    "143); a second signal quits at once. Each file is written whole or not at\n"

@@ -11,7 +11,7 @@ import sys
 
 USER_DOCS = ["README.md", "docs/GUIDE.md", "docs/OPTIONS.md", "docs/PYTHON.md", "docs/API.md",
              "docs/SWEEPS.md", "docs/COVARIANCE.md", "docs/ARCHITECTURE.md", "docs/SPEC.md",
-             "docs/SIMULATOR.md"]
+             "docs/SIMULATOR.md", "docs/GTSAM_BACKEND.md"]
 FORBIDDEN = [
     ("a commit hash", re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}\b")),
     ("an issue number", re.compile(r"\bissues? #?\d+", re.I)),

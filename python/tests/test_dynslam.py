@@ -271,6 +271,19 @@ def test_covariances_as_arrays_and_their_errors(tmp_path):
         held.covariance(ids=[0])  # the smallest-id pose, which fix_first holds
 
 
+def test_the_gtsam_backend_or_how_to_build_it():
+    graph = dynslam.read_graph(graph_path("wc"))
+    with pytest.raises(ValueError, match="known: ceres, gtsam"):
+        dynslam.solve(graph, backend="g2o")
+    try:
+        report = dynslam.solve(graph, backend="gtsam:tight")
+    except ValueError as error:  # a build without GTSAM says how to get it
+        assert "scripts/build_gtsam" in str(error)
+        return
+    ceres = dynslam.solve(graph, tolerances="tight")
+    assert report.final_cost == pytest.approx(ceres.final_cost, rel=1e-6)
+
+
 def test_a_singular_information_matrix_names_its_weak_directions(tmp_path):
     import lzma
     compressed = os.path.join(ROOT, "data", "reference", "kitti_0003", "graphs", "oc_a.g2o.xz")
