@@ -41,7 +41,6 @@ constexpr double kMinDiagonal = 1e-6;
 constexpr double kMaxDiagonal = 1e32;
 constexpr double kMaxRadius = 1e16;
 constexpr double kMinRadius = 1e-32;
-constexpr double kReleasedMinRadius = 1e-5;  // SPEC §7 item 7: GTSAM gives up at λ ≥ 1e5
 
 // Ceres's LM diagonal with Jacobi scaling, in the unscaled variables: Ceres scales column c by
 // s = 1/(1 + √h_cc), clamps the scaled diagonal s²h_cc and damps with λ times it; undone, that is
@@ -365,7 +364,7 @@ OwnMinimizerResult OwnLoop::Run() {
   cholesky.analyzePattern(current.hessian);
   double radius = 1.0 / options_.initial_lambda;
   double decrease_factor = 2;
-  const double min_radius = options_.dsc_released_lm ? kReleasedMinRadius : kMinRadius;
+  const double min_radius = options_.dsc_released_lm ? 1.0 / kReleasedMaxLambda : kMinRadius;
   Eigen::SparseMatrix<double> damped;
   auto stop = [&](std::string termination, std::string detail) {
     result_.termination = std::move(termination);

@@ -27,10 +27,6 @@ namespace dynslam {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): relative and absolute error
-// tolerances (its stop: stop_policy.h), and the λ at which it gives up.
-constexpr double kReleasedTolerance = 1e-5;
-constexpr double kReleasedMaxLambda = 1e5;
 // SolverOptions::extrapolation: the step quality ρ (actual / predicted decrease) of two accepted
 // steps in a row that starts an extrapolation, and the largest factor it moves by.
 constexpr double kExtrapolationRho = 1.5;
@@ -529,7 +525,6 @@ class ConvergenceRecorder : public ceres::IterationCallback {
     }
     return true;
   }
-  static bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
   // SolverOptions::gauge_moves: the last row is an accepted linear solve of quality
   // ρ ≥ kGaugeMoveRho that lowered the cost by less than the segments' priors still hold (all
   // of which a gauge move removes in oc_a).

@@ -8,11 +8,6 @@ namespace dynslam {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): the decrease of an accepted
-// step at which it stops.
-constexpr double kReleasedTolerance = 1e-5;
-
-bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
 
 // The checks, each nothing or the decision to stop.
 

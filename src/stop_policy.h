@@ -17,6 +17,14 @@
 
 namespace dynslam {
 
+// The released code's GTSAM LM (SPEC §6 `released`, §7 item 7): the decrease (relative and
+// absolute) of an accepted step at which it stops, and the λ at which it gives up.
+inline constexpr double kReleasedTolerance = 1e-5;
+inline constexpr double kReleasedMaxLambda = 1e5;
+
+// A convergence row that is a linear solve, not an extrapolation or a gauge move (SPEC §4).
+inline bool IsLinearSolve(const StepRecord& row) { return !row.extrapolation && !row.gauge_move; }
+
 struct StopDecision {
   std::string termination;  // "interrupted", "time_limit", "convergence", "no_convergence"
   std::string detail;
