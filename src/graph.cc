@@ -202,6 +202,14 @@ std::array<int64_t, kNumEdgeKinds> CountEdgesByKind(const Graph& graph) {
   return counts;
 }
 
+std::array<int64_t, kNumRoles> CountVerticesByRole(const Graph& graph) {
+  std::array<int64_t, kNumRoles> counts{};
+  for (const auto& [id, vertex] : graph.vertices) {
+    for (size_t r = 0; r < kNumRoles; ++r) counts[r] += vertex.label.role == kAllRoles[r];
+  }
+  return counts;
+}
+
 Status AssignRoles(Graph& graph, const std::string& file) {
   Status status = graph.labelled ? CheckLabelledRoles(graph) : InferRoles(graph);
   if (status.ok()) status = CheckEdgesAgainstRoles(graph);

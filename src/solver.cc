@@ -847,11 +847,7 @@ Expected<SolveReport> Solve(const SolverOptions& requested, Graph* graph) {
   Assembly& assembly = **built;
 
   SolveReport report;
-  for (const auto& [id, vertex] : graph->vertices) {
-    for (size_t r = 0; r < kAllRoles.size(); ++r) {
-      report.variables_by_role[r] += vertex.label.role == kAllRoles[r];
-    }
-  }
+  report.variables_by_role = CountVerticesByRole(*graph);
   report.edges_by_kind = CountEdgesByKind(*graph);
   report.unused_variables = static_cast<int64_t>(assembly.unused().size());
   report.held_constant = assembly.unused();

@@ -84,6 +84,10 @@ EdgeKind KindOf(const Graph& graph, const Edge& edge) {
 // Number of edges of each kind, indexed by static_cast<int>(EdgeKind).
 std::array<int64_t, kNumEdgeKinds> CountEdgesByKind(const Graph& graph);
 
+// Number of vertices of each role, in the order of kAllRoles (constants such as hy's embedded
+// frames included).
+std::array<int64_t, kNumRoles> CountVerticesByRole(const Graph& graph);
+
 // Gives every vertex a role. A labelled graph keeps its labels and is checked for consistency
 // with its edges (SPEC §1.4); an unlabelled one gets roles inferred from its edges (SPEC §3.1 and
 // the §1.3 edges for object-centric files; poses in no role-giving edge are cameras, points with

@@ -94,9 +94,10 @@ std::string SolverJson(const GtsamProfile& profile, const SolverOptions& options
   }
   json["orderingType"] = "COLAMD";
   json["linearSolverType"] = "MULTIFRONTAL_CHOLESKY";
-  json["pose_edge_jacobians"] = profile.exact_pose_jacobians
-                                    ? "exact (Log's derivative included)"
-                                    : "GTSAM's PriorFactor/BetweenFactor (Log's derivative omitted)";
+  json["pose_edge_jacobians"] =
+      profile.exact_pose_jacobians
+          ? "exact (Log's derivative included)"
+          : "GTSAM's PriorFactor/BetweenFactor (Log's derivative omitted)";
   json["robust"] = RobustText(options.robust);
   json["dsc_motion_residual"] = options.dsc_motion_residual;
   json["dsc_motion_sigma"] = options.dsc_motion_sigma;
@@ -202,11 +203,7 @@ std::string Singular(const gtsam::IndeterminantLinearSystemException& e) {
 }
 
 void CountVariablesAndEdges(const Graph& graph, const Problem& problem, SolveReport* report) {
-  for (const auto& [id, vertex] : graph.vertices) {
-    for (size_t r = 0; r < kAllRoles.size(); ++r) {
-      report->variables_by_role[r] += vertex.label.role == kAllRoles[r];
-    }
-  }
+  report->variables_by_role = CountVerticesByRole(graph);
   report->edges_by_kind = CountEdgesByKind(graph);
   report->held_constant = problem.held_constant;
   report->unused_variables = static_cast<int64_t>(UnusedVertices(graph).size());
