@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <map>
-#include <memory>
 #include <utility>
 
 #include <Eigen/CholmodSupport>
@@ -130,6 +128,11 @@ class OwnLoop {
   void Plus(const std::vector<double>& state, const Eigen::VectorXd& delta,
             std::vector<double>* result) const;
   void WriteBack(const std::vector<double>& state) const;
+  // The LM step from `at` with damping λ: solves (H + λD)δ = −g (D: Ceres's diagonal, or I
+  // without Jacobi scaling); false when CHOLMOD fails or δ is not finite. *model_decrease is
+  // the linear model's decrease along δ.
+  bool DampedStep(const NormalEquations& at, double lambda, Eigen::VectorXd* delta,
+                  double* model_decrease);
   void AddRow(double lambda, double cost, double trial, bool accepted, double rho, double norm);
   int Accepted() const {
     return static_cast<int>(std::count_if(rows_->begin(), rows_->end(),
@@ -146,7 +149,9 @@ class OwnLoop {
   std::vector<int> diagonal_;  // index of each column's diagonal entry in the hessian's values
   int columns_ = 0;
   bool supported_ = true;  // every residual and block within the stack matrices' sizes
-  NormalEquations pattern_;    // the hessian's pattern, zero values
+  Eigen::SparseMatrix<double> pattern_;  // JᵀJ's pattern, zero values
+  Eigen::SparseMatrix<double> damped_;   // JᵀJ + λD, on the same pattern
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> cholesky_;
   OwnMinimizerResult result_;
 };
 
@@ -173,7 +178,9 @@ void OwnLoop::CollectBlocks() {
 
 void OwnLoop::CollectResiduals() {
   std::map<const double*, int> index;
-  for (size_t i = 0; i < blocks_.size(); ++i) index[blocks_[i].problem_values] = static_cast<int>(i);
+  for (size_t i = 0; i < blocks_.size(); ++i) {
+    index[blocks_[i].problem_values] = static_cast<int>(i);
+  }
   std::vector<ceres::ResidualBlockId> ids;
   problem_->GetResidualBlocks(&ids);
   for (const ceres::ResidualBlockId id : ids) {
@@ -220,16 +227,16 @@ void OwnLoop::BuildPattern() {
       }
     }
   }
-  pattern_.hessian.resize(columns_, columns_);
-  pattern_.hessian.setFromTriplets(entries.begin(), entries.end());
-  pattern_.hessian.makeCompressed();
-  pattern_.gradient = Eigen::VectorXd::Zero(columns_);
+  pattern_.resize(columns_, columns_);
+  pattern_.setFromTriplets(entries.begin(), entries.end());
+  pattern_.makeCompressed();
   for (Residual& r : residuals_) {
     for (size_t i = 0; i < r.blocks.size(); ++i) {
       for (size_t j = 0; j < r.blocks.size(); ++j) {
         const Block &a = blocks_[r.blocks[i]], &b = blocks_[r.blocks[j]];
         if (a.column < 0 || b.column < 0 || a.column > b.column) continue;
-        r.pairs.push_back({static_cast<int>(i), static_cast<int>(j), prefix_of[r.blocks[j]].at(r.blocks[i])});
+        const int prefix = prefix_of[r.blocks[j]].at(r.blocks[i]);
+        r.pairs.push_back({static_cast<int>(i), static_cast<int>(j), prefix});
       }
     }
   }
@@ -238,13 +245,13 @@ void OwnLoop::BuildPattern() {
     if (b.column < 0) continue;
     const int prefix = prefix_of[&b - blocks_.data()].at(static_cast<int>(&b - blocks_.data()));
     for (int j = 0; j < b.tangent; ++j) {
-      diagonal_[b.column + j] = pattern_.hessian.outerIndexPtr()[b.column + j] + prefix + j;
+      diagonal_[b.column + j] = pattern_.outerIndexPtr()[b.column + j] + prefix + j;
     }
   }
 }
 
 bool OwnLoop::Evaluate(const std::vector<double>& state, NormalEquations* out) {
-  if (out->hessian.nonZeros() != pattern_.hessian.nonZeros()) out->hessian = pattern_.hessian;
+  if (out->hessian.nonZeros() != pattern_.nonZeros()) out->hessian = pattern_;
   std::fill(out->hessian.valuePtr(), out->hessian.valuePtr() + out->hessian.nonZeros(), 0.0);
   out->gradient.setZero(columns_);
   out->cost = 0;
@@ -344,28 +351,54 @@ void OwnLoop::AddRow(double lambda, double cost, double trial, bool accepted, do
   if (options_.on_step) options_.on_step(row);
 }
 
+bool OwnLoop::DampedStep(const NormalEquations& at, double lambda, Eigen::VectorXd* delta,
+                         double* model_decrease) {
+  if (damped_.nonZeros() != at.hessian.nonZeros()) damped_ = at.hessian;
+  const double* hessian = at.hessian.valuePtr();
+  std::copy(hessian, hessian + at.hessian.nonZeros(), damped_.valuePtr());
+  Eigen::VectorXd diagonal(columns_);
+  for (int c = 0; c < columns_; ++c) {
+    diagonal[c] = options_.jacobi_scaling ? JacobiScaledDiagonal(hessian[diagonal_[c]]) : 1.0;
+    damped_.valuePtr()[diagonal_[c]] += lambda * diagonal[c];
+  }
+  cholesky_.factorize(damped_);
+  if (cholesky_.info() != Eigen::Success) return false;
+  *delta = -cholesky_.solve(at.gradient);
+  // (H + λD)δ = −g gives the model's decrease −gᵀδ − ½δᵀHδ = ½(λδᵀDδ − gᵀδ).
+  *model_decrease =
+      0.5 * (lambda * delta->dot(diagonal.cwiseProduct(*delta)) - at.gradient.dot(*delta));
+  return delta->allFinite();
+}
+
 OwnMinimizerResult OwnLoop::Run() {
   if (!supported_) {
     return {"failure", "dynslam_lm handles residuals of at most 6 and blocks of at most 7 values",
             false};
   }
   std::vector<double> state, trial;
-  for (const Block& b : blocks_) state.insert(state.end(), b.problem_values, b.problem_values + b.size);
+  for (const Block& b : blocks_) {
+    state.insert(state.end(), b.problem_values, b.problem_values + b.size);
+  }
   NormalEquations current, next;
   Clock::time_point t = Clock::now();
   if (!Evaluate(state, &current)) {
     return {"failure", "a residual could not be evaluated at the start", false};
   }
   result_.evaluation_s += SecondsSince(t);
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> cholesky;
-  cholesky.cholmod().nmethods = 1;  // AMD only, as Ceres asks CHOLMOD
-  cholesky.cholmod().method[0].ordering = CHOLMOD_AMD;
-  cholesky.cholmod().postorder = 1;
-  cholesky.analyzePattern(current.hessian);
+  cholesky_.cholmod().nmethods = 1;  // AMD only, as Ceres asks CHOLMOD
+  cholesky_.cholmod().method[0].ordering = CHOLMOD_AMD;
+  cholesky_.cholmod().postorder = 1;
+  cholesky_.analyzePattern(current.hessian);
   double radius = 1.0 / options_.initial_lambda;
   double decrease_factor = 2;
   const double min_radius = options_.dsc_released_lm ? 1.0 / kReleasedMaxLambda : kMinRadius;
-  Eigen::SparseMatrix<double> damped;
+  // Ceres's rule after a rejected step: shrink the radius ever faster; true once it is below
+  // its bound.
+  auto shrink = [&] {
+    radius /= decrease_factor;
+    decrease_factor *= 2;
+    return radius < min_radius;
+  };
   auto stop = [&](std::string termination, std::string detail) {
     result_.termination = std::move(termination);
     result_.detail = std::move(detail);
@@ -384,36 +417,21 @@ OwnMinimizerResult OwnLoop::Run() {
     }
     t = Clock::now();
     const double lambda = 1.0 / radius;
-    if (damped.nonZeros() != current.hessian.nonZeros()) damped = current.hessian;
-    std::copy(current.hessian.valuePtr(), current.hessian.valuePtr() + current.hessian.nonZeros(),
-              damped.valuePtr());
-    Eigen::VectorXd diagonal(columns_);
-    for (int c = 0; c < columns_; ++c) {
-      const double d = options_.jacobi_scaling ? JacobiScaledDiagonal(current.hessian.valuePtr()[diagonal_[c]]) : 1.0;
-      diagonal[c] = d;
-      damped.valuePtr()[diagonal_[c]] += lambda * d;
-    }
-    cholesky.factorize(damped);
     Eigen::VectorXd delta;
-    const bool solved = cholesky.info() == Eigen::Success;
-    if (solved) delta = -cholesky.solve(current.gradient);
+    double model_decrease = 0;
+    const bool solved = DampedStep(current, lambda, &delta, &model_decrease);
     ++result_.linear_solves;
     result_.linear_solve_s += SecondsSince(t);
-    if (!solved || !delta.allFinite()) {
+    if (!solved) {
       AddRow(lambda, current.cost, kInfinity, false, 0, 0);
-      radius /= decrease_factor;
-      decrease_factor *= 2;
-      if (radius < min_radius) return stop("convergence", "the damping reached its bound");
+      if (shrink()) return stop("convergence", "the damping reached its bound");
       continue;
     }
-    if (delta.norm() <= options_.parameter_tolerance *
-                            (Eigen::Map<const Eigen::VectorXd>(state.data(), state.size()).norm() +
-                             options_.parameter_tolerance)) {
+    const double tolerance = options_.parameter_tolerance;
+    const double state_norm = Eigen::Map<const Eigen::VectorXd>(state.data(), state.size()).norm();
+    if (delta.norm() <= tolerance * (state_norm + tolerance)) {
       return stop("convergence", "step norm <= parameter_tolerance");
     }
-    // (H + λD)δ = −g gives the model's decrease −gᵀδ − ½δᵀHδ = ½(λδᵀDδ − gᵀδ).
-    const double model_decrease =
-        0.5 * (lambda * delta.dot(diagonal.cwiseProduct(delta)) - current.gradient.dot(delta));
     Plus(state, delta, &trial);
     t = Clock::now();
     const bool evaluated = Evaluate(trial, &next);
@@ -423,9 +441,7 @@ OwnMinimizerResult OwnLoop::Run() {
     const bool accepted = evaluated && model_decrease > 0 && rho > kMinRelativeDecrease;
     AddRow(lambda, current.cost, trial_cost, accepted, rho, delta.norm());
     if (!accepted) {
-      radius /= decrease_factor;
-      decrease_factor *= 2;
-      if (radius < min_radius) return stop("convergence", "the damping reached its bound");
+      if (shrink()) return stop("convergence", "the damping reached its bound");
       continue;
     }
     const double change = current.cost - next.cost;
@@ -442,7 +458,8 @@ OwnMinimizerResult OwnLoop::Run() {
 }  // namespace
 
 OwnMinimizerResult MinimizeWithOwnLoop(ceres::Problem* problem, const SolverOptions& options,
-                                       const StopPolicy& policy, StopPolicy::Clock::time_point start,
+                                       const StopPolicy& policy,
+                                       StopPolicy::Clock::time_point start,
                                        std::vector<StepRecord>* rows) {
   return OwnLoop(problem, options, policy, start, rows).Run();
 }

@@ -34,7 +34,8 @@ struct OwnMinimizerResult {
 // accepted state). Rows are appended to *rows, one per linear solve (SPEC §4), with times since
 // `start`. Robust losses are supported as Ceres applies them (Triggs's correction).
 OwnMinimizerResult MinimizeWithOwnLoop(ceres::Problem* problem, const SolverOptions& options,
-                                       const StopPolicy& policy, StopPolicy::Clock::time_point start,
+                                       const StopPolicy& policy,
+                                       StopPolicy::Clock::time_point start,
                                        std::vector<StepRecord>* rows);
 
 }  // namespace dynslam
