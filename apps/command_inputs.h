@@ -23,8 +23,8 @@ bool ReadGroundTruthIfGiven(const std::string& path, std::optional<GroundTruth>*
 bool CovarianceKindsOfFlag(bool given, const std::string& text, std::vector<CovarianceKind>* kinds);
 
 // --backend NAME of solve and compare (gtsam_backend.h ParseBackend): *gtsam empty for ceres.
-// Returns false after printing the problem to stderr — an unknown name, or gtsam in a build
-// without it (naming scripts/build_gtsam); the caller then exits with kExitBadInput.
+// Returns false after printing ParseBackend's problem to stderr; the caller then exits with
+// kExitBadInput.
 bool BackendOfFlag(const std::string& text, std::optional<GtsamProfile>* gtsam);
 
 // The embedded KITTI Tracking data (oxts/, label_02/, calib/), wherever the command is run from:

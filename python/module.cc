@@ -420,7 +420,6 @@ void DefineFunctions(py::module_& m) {
   m.def("solve", [](const Graph& graph, const std::string& backend, const py::kwargs& options) {
     Expected<std::optional<GtsamProfile>> gtsam = ParseBackend(backend);
     if (!gtsam.ok()) throw py::value_error(gtsam.error().message);
-    if (*gtsam && !GtsamBackendBuilt()) throw py::value_error(GtsamBackendMissingMessage());
     return SolveReleasingTheGil(ToSolverOptions(options), graph, *gtsam);
   }, py::arg("graph"), py::arg("backend") = "ceres", solve_doc.c_str());
   static const std::string compare_doc =

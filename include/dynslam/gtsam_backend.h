@@ -47,7 +47,8 @@ std::vector<std::string> GtsamProfileNames();
 Expected<GtsamProfile> GtsamProfileNamed(const std::string& name);
 
 // A backend as users name it: "ceres" → none (the Ceres solver, solver.h); "gtsam" or
-// "gtsam:PROFILE" → that profile. An Error naming the known backends and profiles otherwise.
+// "gtsam:PROFILE" → that profile. An Error naming the known backends and profiles otherwise, or
+// GtsamBackendMissingMessage() for gtsam in a build without it.
 Expected<std::optional<GtsamProfile>> ParseBackend(const std::string& text);
 
 // Whether this build has the backend (DYNSLAM_WITH_GTSAM); when not, why and how to get it.

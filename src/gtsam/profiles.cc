@@ -54,6 +54,7 @@ Expected<std::optional<GtsamProfile>> ParseBackend(const std::string& text) {
   if (text == "gtsam" || text.rfind("gtsam:", 0) == 0) {
     Expected<GtsamProfile> profile = GtsamProfileNamed(text == "gtsam" ? "" : text.substr(6));
     if (!profile.ok()) return profile.error();
+    if (!GtsamBackendBuilt()) return Error{"", 0, GtsamBackendMissingMessage()};
     return std::optional<GtsamProfile>(std::move(profile).value());
   }
   std::string profiles;
