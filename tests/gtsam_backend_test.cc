@@ -1,7 +1,8 @@
 // The GTSAM backend (gtsam_backend.h): its factors' Jacobians, its costs against the Ceres
 // path's, and its solves against the independent GTSAM program's (data/gtsam_ref: not made by
-// this backend, tests/reference_util.h) — initial cost per kind to 1e-12, final cost to 1e-9, LM iterations on
-// `released`, marginals to 1e-8. Built only with DYNSLAM_WITH_GTSAM (label gtsam).
+// this backend, tests/reference_util.h) — initial cost per kind to 1e-12, final cost to 1e-9,
+// LM iterations on `released`, marginals to 1e-8. Built only with DYNSLAM_WITH_GTSAM (label
+// gtsam).
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -107,7 +108,9 @@ class GtsamBackendTest : public ::testing::TestWithParam<ReferenceGraph> {
 
 // 1e-12 relative, or 1e-6 where residuals fall in GTSAM's approximate near-π branch of Logmap
 // (torus3D: tests/reference_cost_test.cc, docs/SPEC_NOTES.md).
-double Tolerance(const Graph& graph) { return ResidualsInGtsamNearPiBranch(graph) > 0 ? 1e-6 : 1e-12; }
+double Tolerance(const Graph& graph) {
+  return ResidualsInGtsamNearPiBranch(graph) > 0 ? 1e-6 : 1e-12;
+}
 
 // The same SPEC §1.5 cost per edge kind as the Ceres cost functions with `options`, at the
 // graph's values.

@@ -17,7 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 Graph ReadReference(const std::string& scene, const std::string& formulation) {
-  const fs::path path = fs::path(testing::ReferenceDir()) / scene / "graphs" / (formulation + ".g2o");
+  const fs::path path =
+      fs::path(testing::ReferenceDir()) / scene / "graphs" / (formulation + ".g2o");
   Expected<Graph> graph = ReadGraph(path.string());
   EXPECT_TRUE(graph.ok()) << graph.error().ToString();
   return graph.ok() ? std::move(graph).value() : Graph();
@@ -58,8 +59,8 @@ struct StepCase {
 class FirstStepTest : public ::testing::TestWithParam<StepCase> {};
 
 // The first step of the own loop is Ceres LM's with the same damping: same trial cost, same
-// decision, same values (to 1e-10 of the step), with λ·I and with Ceres's Jacobi-scaled λ·diag(JᵀJ), with and
-// without a robust kernel.
+// decision, same values (to 1e-10 of the step), with λ·I and with Ceres's Jacobi-scaled
+// λ·diag(JᵀJ), with and without a robust kernel.
 TEST_P(FirstStepTest, EqualsCeresLevenbergMarquardtsFirstStep) {
   const StepCase& c = GetParam();
   const Graph start = ReadReference(c.scene, c.formulation);

@@ -231,13 +231,13 @@ class HybridSmoothingFactor : public gtsam::NoiseModelFactorN<Pose3, Pose3, Pose
                        Jacobian dHa = boost::none, Jacobian dHb = boost::none,
                        Jacobian dHc = boost::none) const override {
     gtsam::Matrix6 La_Ha, Lb_Hb, Lc_Hc, U_La, U_Lb1, V_Lb, V_Lc, E_U, E_V, r_E;
-    const Pose3 La = Ha.compose(embedded_, La_Ha, boost::none);
-    const Pose3 Lb = Hb.compose(embedded_, Lb_Hb, boost::none);
-    const Pose3 Lc = Hc.compose(embedded_, Lc_Hc, boost::none);
-    const Pose3 U = La.between(Lb, U_La, U_Lb1);  // L_a⁻¹L_b
-    const Pose3 V = Lb.between(Lc, V_Lb, V_Lc);   // L_b⁻¹L_c
-    const Pose3 E = U.between(V, E_U, E_V);
-    const gtsam::Vector6 r = Pose3::Logmap(E, r_E);
+    const Pose3 La = Ha.compose(embedded_, When(!!dHa, La_Ha), boost::none);
+    const Pose3 Lb = Hb.compose(embedded_, When(!!dHb, Lb_Hb), boost::none);
+    const Pose3 Lc = Hc.compose(embedded_, When(!!dHc, Lc_Hc), boost::none);
+    const Pose3 U = La.between(Lb, When(!!dHa, U_La), When(!!dHb, U_Lb1));  // L_a⁻¹L_b
+    const Pose3 V = Lb.between(Lc, When(!!dHb, V_Lb), When(!!dHc, V_Lc));   // L_b⁻¹L_c
+    const Pose3 E = U.between(V, When(dHa || dHb, E_U), When(dHb || dHc, E_V));
+    const gtsam::Vector6 r = Pose3::Logmap(E, When(dHa || dHb || dHc, r_E));
     Set(dHa, r_E * E_U * U_La * La_Ha);
     Set(dHb, r_E * (E_U * U_Lb1 + E_V * V_Lb) * Lb_Hb);
     Set(dHc, r_E * E_V * V_Lc * Lc_Hc);

@@ -163,7 +163,9 @@ Pose FromGtsam(const gtsam::Pose3& pose) {
 
 Expected<Problem> BuildProblem(const Graph& graph, const GtsamProfile& profile,
                                const SolverOptions& options) {
-  if (graph.NumEdges() == 0) return Error{"", 0, "the graph has no edges: there is nothing to solve"};
+  if (graph.NumEdges() == 0) {
+    return Error{"", 0, "the graph has no edges: there is nothing to solve"};
+  }
   if (graph.Edges<PriorEdge>().empty() && !options.fix_first) {
     return Error{"", 0,
                  "the graph has no EDGE_SE3_PRIOR, so it is determined only up to a rigid motion "
