@@ -12,6 +12,8 @@
 #include <ceres/loss_function.h>
 #include <ceres/manifold.h>
 
+#include "src/structured_secant.h"
+
 namespace dynslam {
 namespace {
 
@@ -110,7 +112,12 @@ class OwnLoop {
  public:
   OwnLoop(ceres::Problem* problem, const SolverOptions& options, const StopPolicy& policy,
           Clock::time_point start, std::vector<StepRecord>* rows)
-      : problem_(problem), options_(options), policy_(policy), start_(start), rows_(rows) {
+      : problem_(problem),
+        options_(options),
+        policy_(policy),
+        start_(start),
+        rows_(rows),
+        secant_(options.secant_memory) {
     CollectBlocks();
     CollectResiduals();
     BuildPattern();
@@ -128,11 +135,19 @@ class OwnLoop {
   void Plus(const std::vector<double>& state, const Eigen::VectorXd& delta,
             std::vector<double>* result) const;
   void WriteBack(const std::vector<double>& state) const;
-  // The LM step from `at` with damping λ: solves (H + λD)δ = −g (D: Ceres's diagonal, or I
-  // without Jacobi scaling); false when CHOLMOD fails or δ is not finite. *model_decrease is
-  // the linear model's decrease along δ.
-  bool DampedStep(const NormalEquations& at, double lambda, Eigen::VectorXd* delta,
-                  double* model_decrease);
+  // A step to try, with its model's decrease.
+  struct Candidate {
+    Eigen::VectorXd delta;
+    double model_decrease = 0;
+    bool secant = false;  // with the structured secant estimate
+  };
+  // The LM steps from `at` with damping λ, in the order to try them: the secant model's when it
+  // is in use (and predicts a decrease), then Gauss–Newton's, both from one factorisation of
+  // H + λD (D: Ceres's diagonal, or I without Jacobi scaling). False when CHOLMOD fails or the
+  // step is not finite.
+  bool DampedStep(const NormalEquations& at, double lambda, std::vector<Candidate>* candidates);
+  // Sets use_secant_ from how well each model predicted `actual`, the decrease along δ.
+  void ChooseModel(const NormalEquations& at, const Eigen::VectorXd& delta, double actual);
   void AddRow(double lambda, double cost, double trial, bool accepted, double rho, double norm);
   int Accepted() const {
     return static_cast<int>(std::count_if(rows_->begin(), rows_->end(),
@@ -152,6 +167,10 @@ class OwnLoop {
   Eigen::SparseMatrix<double> pattern_;  // JᵀJ's pattern, zero values
   Eigen::SparseMatrix<double> damped_;   // JᵀJ + λD, on the same pattern
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> cholesky_;
+  StructuredSecant secant_;
+  // Whether the secant model predicted the last trial's decrease better than Gauss–Newton's
+  // (NL2SOL's choice of model, Dennis, Gay and Welsch 1981).
+  bool use_secant_ = false;
   OwnMinimizerResult result_;
 };
 
@@ -351,8 +370,9 @@ void OwnLoop::AddRow(double lambda, double cost, double trial, bool accepted, do
   if (options_.on_step) options_.on_step(row);
 }
 
-bool OwnLoop::DampedStep(const NormalEquations& at, double lambda, Eigen::VectorXd* delta,
-                         double* model_decrease) {
+bool OwnLoop::DampedStep(const NormalEquations& at, double lambda,
+                         std::vector<Candidate>* candidates) {
+  candidates->clear();
   if (damped_.nonZeros() != at.hessian.nonZeros()) damped_ = at.hessian;
   const double* hessian = at.hessian.valuePtr();
   std::copy(hessian, hessian + at.hessian.nonZeros(), damped_.valuePtr());
@@ -363,11 +383,34 @@ bool OwnLoop::DampedStep(const NormalEquations& at, double lambda, Eigen::Vector
   }
   cholesky_.factorize(damped_);
   if (cholesky_.info() != Eigen::Success) return false;
-  *delta = -cholesky_.solve(at.gradient);
-  // (H + λD)δ = −g gives the model's decrease −gᵀδ − ½δᵀHδ = ½(λδᵀDδ − gᵀδ).
-  *model_decrease =
-      0.5 * (lambda * delta->dot(diagonal.cwiseProduct(*delta)) - at.gradient.dot(*delta));
-  return delta->allFinite();
+  // (H + λD + S)δ = −g gives the model's decrease −gᵀδ − ½δᵀ(H + S)δ = ½(λδᵀDδ − gᵀδ), with
+  // S = 0 (Gauss–Newton) or the structured secant estimate.
+  auto candidate = [&](Eigen::VectorXd delta, bool secant) {
+    const double decrease =
+        0.5 * (lambda * delta.dot(diagonal.cwiseProduct(delta)) - at.gradient.dot(delta));
+    return Candidate{std::move(delta), decrease, secant};
+  };
+  Candidate plain = candidate(-cholesky_.solve(at.gradient), false);
+  if (!plain.delta.allFinite()) return false;
+  Eigen::VectorXd corrected = plain.delta;
+  const auto solve = [this](const Eigen::MatrixXd& b) -> Eigen::MatrixXd {
+    return cholesky_.solve(b);
+  };
+  if (use_secant_ && secant_.Correct(solve, &corrected)) {
+    Candidate secant = candidate(std::move(corrected), true);
+    if (secant.model_decrease > 0) candidates->push_back(std::move(secant));
+  }
+  candidates->push_back(std::move(plain));
+  return true;
+}
+
+void OwnLoop::ChooseModel(const NormalEquations& at, const Eigen::VectorXd& delta,
+                          double actual) {
+  if (secant_.empty()) return;
+  const double gauss_newton = -at.gradient.dot(delta) -
+                              0.5 * delta.dot(at.hessian.selfadjointView<Eigen::Upper>() * delta);
+  const double secant = gauss_newton - 0.5 * delta.dot(secant_.Times(delta));
+  use_secant_ = std::abs(actual - secant) < std::abs(actual - gauss_newton);
 }
 
 OwnMinimizerResult OwnLoop::Run() {
@@ -417,9 +460,8 @@ OwnMinimizerResult OwnLoop::Run() {
     }
     t = Clock::now();
     const double lambda = 1.0 / radius;
-    Eigen::VectorXd delta;
-    double model_decrease = 0;
-    const bool solved = DampedStep(current, lambda, &delta, &model_decrease);
+    std::vector<Candidate> candidates;
+    const bool solved = DampedStep(current, lambda, &candidates);
     ++result_.linear_solves;
     result_.linear_solve_s += SecondsSince(t);
     if (!solved) {
@@ -429,22 +471,43 @@ OwnMinimizerResult OwnLoop::Run() {
     }
     const double tolerance = options_.parameter_tolerance;
     const double state_norm = Eigen::Map<const Eigen::VectorXd>(state.data(), state.size()).norm();
-    if (delta.norm() <= tolerance * (state_norm + tolerance)) {
+    if (candidates.back().delta.norm() <= tolerance * (state_norm + tolerance)) {
       return stop("convergence", "step norm <= parameter_tolerance");
     }
-    Plus(state, delta, &trial);
-    t = Clock::now();
-    const bool evaluated = Evaluate(trial, &next);
-    result_.evaluation_s += SecondsSince(t);
-    const double trial_cost = evaluated ? next.cost : kInfinity;
-    const double rho = evaluated ? (current.cost - trial_cost) / model_decrease : 0;
-    const bool accepted = evaluated && model_decrease > 0 && rho > kMinRelativeDecrease;
-    AddRow(lambda, current.cost, trial_cost, accepted, rho, delta.norm());
-    if (!accepted) {
+    // One row per linear solve (SPEC §4): the last candidate tried.
+    const Candidate* taken = nullptr;
+    double rho = 0;
+    for (const Candidate& c : candidates) {
+      Plus(state, c.delta, &trial);
+      t = Clock::now();
+      const bool evaluated = Evaluate(trial, &next);
+      result_.evaluation_s += SecondsSince(t);
+      const double trial_cost = evaluated ? next.cost : kInfinity;
+      rho = evaluated ? (current.cost - trial_cost) / c.model_decrease : 0;
+      const bool accepted = evaluated && c.model_decrease > 0 && rho > kMinRelativeDecrease;
+      if (accepted || &c == &candidates.back()) {
+        AddRow(lambda, current.cost, trial_cost, accepted, rho, c.delta.norm());
+      }
+      if (accepted) {
+        ChooseModel(current, c.delta, current.cost - trial_cost);
+        taken = &c;
+        break;
+      }
+      if (c.secant) {  // the estimate misled: start it afresh from the next steps
+        secant_.Clear();
+        use_secant_ = false;
+      }
+    }
+    if (taken == nullptr) {
       if (shrink()) return stop("convergence", "the damping reached its bound");
       continue;
     }
+    const Eigen::VectorXd& delta = taken->delta;
     const double change = current.cost - next.cost;
+    if (options_.secant_memory > 0) {
+      secant_.Add(delta, next.gradient - current.gradient -
+                             next.hessian.selfadjointView<Eigen::Upper>() * delta);
+    }
     state.swap(trial);
     std::swap(current, next);
     radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1 - std::pow(2 * rho - 1, 3)));

@@ -627,6 +627,12 @@ Status CheckOptions(const SolverOptions& options) {
   if (options.nonmonotonic_steps < -1) {
     return Error{"", 0, "nonmonotonic_steps must be -1 (auto), 0 (off) or a positive count"};
   }
+  if (options.secant_memory < 0) return Error{"", 0, "secant_memory must be 0 (off) or a count"};
+  if (options.secant_memory > 0 && options.minimizer != MinimizerType::kDynslamLm) {
+    return Error{"", 0,
+                 "secant_memory needs minimizer dynslam_lm: Ceres's own loops cannot take the "
+                 "secant estimate"};
+  }
   if (!(options.initial_lambda > 0) || !std::isfinite(1.0 / options.initial_lambda)) {
     return Error{"", 0, "initial_lambda must be 0 (auto) or positive with a finite inverse"};
   }

@@ -70,6 +70,7 @@ struct SolverOptions {
   double initial_lambda = 0;    // 0: auto
   bool jacobi_scaling = true;
   int nonmonotonic_steps = -1;  // −1: auto
+  int secant_memory = 0;        // 0: Gauss–Newton's model
   bool eliminate_object_points = false;
   Frame object_point_variables = Frame::kWorld;
   Frame kinematic_residual_frame = Frame::kWorld;
@@ -113,8 +114,9 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
                 MinimizerType::kDynslamLm},
                Name,
                "trust-region strategy: Ceres's Levenberg-Marquardt or Powell's dogleg, or "
-               "dynslam_lm: dynslam's own LM loop over the same cost functions (CHOLMOD, no "
-               "extrapolation or gauge moves yet; docs/SOLVER.md); auto: lm for oc_a, oc_b, oc_c "
+               "dynslam_lm: dynslam's own LM loop over the same cost functions (CHOLMOD, "
+               "secant_memory, no extrapolation or gauge moves yet; docs/SOLVER.md); auto: lm "
+               "for oc_a, oc_b, oc_c "
                "and pose graphs, dogleg for wc, hy and other graphs with points"),
         Choice("linear_solver", "solver", &O::linear_solver,
                {LinearSolverType::kAuto, LinearSolverType::kSparseSchur,
@@ -142,6 +144,10 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
                 "accepted ones (Ceres's non-monotonic steps); -1: 5 for graphs with kinematic "
                 "edges and kinematic_residual_frame object, else 0",
                 -1, 1000),
+        Integer("secant_memory", "solver", &O::secant_memory,
+                "dynslam_lm: add to Gauss-Newton's model the curvature it leaves out, estimated "
+                "from the last N accepted steps (structured secant, docs/SOLVER.md); 0: off",
+                0, 64),
         Aliased({"extrapolate"}, Switch("extrapolation", "solver", &O::extrapolation,
                "when two accepted steps in a row gain at least 1.5x what their model predicted, "
                "try moving on along them 2, 4, 8, ... (at most 64) times as far while the cost "
