@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <thread>
 #include <utility>
 
 #include <Eigen/CholmodSupport>
@@ -129,8 +130,13 @@ class OwnLoop {
   void CollectBlocks();
   void CollectResiduals();
   void BuildPattern();
-  // Residuals, Jacobians, JᵀJ, Jᵀr and the cost at `state`; false when a cost function fails.
+  // Residuals, Jacobians, JᵀJ, Jᵀr and the cost at `state`, in SolverOptions::threads threads
+  // (thread k sums residuals k, k + threads, …, which mixes the kinds, whose costs differ; the
+  // sums are added); false when a cost function fails.
   bool Evaluate(const std::vector<double>& state, NormalEquations* out);
+  // The sums of residuals first, first + stride, … alone.
+  bool EvaluateShare(const std::vector<double>& state, size_t first, size_t stride,
+                     NormalEquations* out) const;
   // state ⊞ δ for every varying block.
   void Plus(const std::vector<double>& state, const Eigen::VectorXd& delta,
             std::vector<double>* result) const;
@@ -145,9 +151,16 @@ class OwnLoop {
   // is in use (and predicts a decrease), then Gauss–Newton's, both from one factorisation of
   // H + λD (D: Ceres's diagonal, or I without Jacobi scaling). False when CHOLMOD fails or the
   // step is not finite.
-  bool DampedStep(const NormalEquations& at, double lambda, std::vector<Candidate>* candidates);
+  bool DampedStep(NormalEquations* at, double lambda, std::vector<Candidate>* candidates);
   // Sets use_secant_ from how well each model predicted `actual`, the decrease along δ.
   void ChooseModel(const NormalEquations& at, const Eigen::VectorXd& delta, double actual);
+  // Evaluates the candidates from state_ in order until the ratio accepts one (left in trial_
+  // and next_, its ratio in *rho) and adds the linear solve's one row (SPEC §4: the last
+  // candidate tried). Nullptr when every one is rejected.
+  const Candidate* TryCandidates(const std::vector<Candidate>& candidates, double lambda,
+                                 double* rho);
+  // Moves to the accepted trial, teaching the secant estimate the step.
+  void Accept(const Eigen::VectorXd& delta);
   void AddRow(double lambda, double cost, double trial, bool accepted, double rho, double norm);
   int Accepted() const {
     return static_cast<int>(std::count_if(rows_->begin(), rows_->end(),
@@ -165,8 +178,10 @@ class OwnLoop {
   int columns_ = 0;
   bool supported_ = true;  // every residual and block within the stack matrices' sizes
   Eigen::SparseMatrix<double> pattern_;  // JᵀJ's pattern, zero values
-  Eigen::SparseMatrix<double> damped_;   // JᵀJ + λD, on the same pattern
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> cholesky_;
+  std::vector<double> state_, trial_;  // the last accepted values, and a step's trial values
+  NormalEquations current_, next_;      // at state_ and at trial_
+  std::vector<NormalEquations> partial_;  // the other threads' sums in Evaluate
   StructuredSecant secant_;
   // Whether the secant model predicted the last trial's decrease better than Gauss–Newton's
   // (NL2SOL's choice of model, Dennis, Gay and Welsch 1981).
@@ -270,6 +285,27 @@ void OwnLoop::BuildPattern() {
 }
 
 bool OwnLoop::Evaluate(const std::vector<double>& state, NormalEquations* out) {
+  const int threads = std::clamp(options_.threads, 1, std::max<int>(1, residuals_.size()));
+  partial_.resize(threads - 1);
+  std::vector<std::thread> workers;
+  std::vector<char> ok(threads, 1);
+  for (int k = 1; k < threads; ++k) {
+    workers.emplace_back([&, k] { ok[k] = EvaluateShare(state, k, threads, &partial_[k - 1]); });
+  }
+  ok[0] = EvaluateShare(state, 0, threads, out);
+  for (std::thread& w : workers) w.join();
+  for (const NormalEquations& p : partial_) {
+    Eigen::Map<Eigen::VectorXd>(out->hessian.valuePtr(), out->hessian.nonZeros()) +=
+        Eigen::Map<const Eigen::VectorXd>(p.hessian.valuePtr(), p.hessian.nonZeros());
+    out->gradient += p.gradient;
+    out->cost += p.cost;
+  }
+  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; }) &&
+         std::isfinite(out->cost);
+}
+
+bool OwnLoop::EvaluateShare(const std::vector<double>& state, size_t first, size_t stride,
+                            NormalEquations* out) const {
   if (out->hessian.nonZeros() != pattern_.nonZeros()) out->hessian = pattern_;
   std::fill(out->hessian.valuePtr(), out->hessian.valuePtr() + out->hessian.nonZeros(), 0.0);
   out->gradient.setZero(columns_);
@@ -283,7 +319,8 @@ bool OwnLoop::Evaluate(const std::vector<double>& state, NormalEquations* out) {
   PlusJacobian plus;
   BlockProduct product;
   Residuals r;
-  for (const Residual& res : residuals_) {
+  for (size_t index = first; index < residuals_.size(); index += stride) {
+    const Residual& res = residuals_[index];
     const int m = res.cost->num_residuals();
     const size_t n = res.blocks.size();
     parameters.resize(n);
@@ -370,27 +407,29 @@ void OwnLoop::AddRow(double lambda, double cost, double trial, bool accepted, do
   if (options_.on_step) options_.on_step(row);
 }
 
-bool OwnLoop::DampedStep(const NormalEquations& at, double lambda,
+bool OwnLoop::DampedStep(NormalEquations* at, double lambda,
                          std::vector<Candidate>* candidates) {
   candidates->clear();
-  if (damped_.nonZeros() != at.hessian.nonZeros()) damped_ = at.hessian;
-  const double* hessian = at.hessian.valuePtr();
-  std::copy(hessian, hessian + at.hessian.nonZeros(), damped_.valuePtr());
-  Eigen::VectorXd diagonal(columns_);
+  // H + λD is factorised in place, its diagonal restored afterwards from a copy (exactly: no
+  // copy of H, which at the paper's scale is a large part of the memory).
+  double* hessian = at->hessian.valuePtr();
+  Eigen::VectorXd undamped(columns_), diagonal(columns_);
   for (int c = 0; c < columns_; ++c) {
-    diagonal[c] = options_.jacobi_scaling ? JacobiScaledDiagonal(hessian[diagonal_[c]]) : 1.0;
-    damped_.valuePtr()[diagonal_[c]] += lambda * diagonal[c];
+    undamped[c] = hessian[diagonal_[c]];
+    diagonal[c] = options_.jacobi_scaling ? JacobiScaledDiagonal(undamped[c]) : 1.0;
+    hessian[diagonal_[c]] += lambda * diagonal[c];
   }
-  cholesky_.factorize(damped_);
+  cholesky_.factorize(at->hessian);
+  for (int c = 0; c < columns_; ++c) hessian[diagonal_[c]] = undamped[c];
   if (cholesky_.info() != Eigen::Success) return false;
   // (H + λD + S)δ = −g gives the model's decrease −gᵀδ − ½δᵀ(H + S)δ = ½(λδᵀDδ − gᵀδ), with
   // S = 0 (Gauss–Newton) or the structured secant estimate.
   auto candidate = [&](Eigen::VectorXd delta, bool secant) {
     const double decrease =
-        0.5 * (lambda * delta.dot(diagonal.cwiseProduct(delta)) - at.gradient.dot(delta));
+        0.5 * (lambda * delta.dot(diagonal.cwiseProduct(delta)) - at->gradient.dot(delta));
     return Candidate{std::move(delta), decrease, secant};
   };
-  Candidate plain = candidate(-cholesky_.solve(at.gradient), false);
+  Candidate plain = candidate(-cholesky_.solve(at->gradient), false);
   if (!plain.delta.allFinite()) return false;
   Eigen::VectorXd corrected = plain.delta;
   const auto solve = [this](const Eigen::MatrixXd& b) -> Eigen::MatrixXd {
@@ -413,25 +452,57 @@ void OwnLoop::ChooseModel(const NormalEquations& at, const Eigen::VectorXd& delt
   use_secant_ = std::abs(actual - secant) < std::abs(actual - gauss_newton);
 }
 
+const OwnLoop::Candidate* OwnLoop::TryCandidates(const std::vector<Candidate>& candidates,
+                                                 double lambda, double* rho) {
+  for (const Candidate& c : candidates) {
+    Plus(state_, c.delta, &trial_);
+    const Clock::time_point t = Clock::now();
+    const bool evaluated = Evaluate(trial_, &next_);
+    result_.evaluation_s += SecondsSince(t);
+    const double trial_cost = evaluated ? next_.cost : kInfinity;
+    *rho = evaluated ? (current_.cost - trial_cost) / c.model_decrease : 0;
+    const bool accepted = evaluated && c.model_decrease > 0 && *rho > kMinRelativeDecrease;
+    if (accepted || &c == &candidates.back()) {
+      AddRow(lambda, current_.cost, trial_cost, accepted, *rho, c.delta.norm());
+    }
+    if (accepted) {
+      ChooseModel(current_, c.delta, current_.cost - trial_cost);
+      return &c;
+    }
+    if (c.secant) {  // the estimate misled: start it afresh from the next steps
+      secant_.Clear();
+      use_secant_ = false;
+    }
+  }
+  return nullptr;
+}
+
+void OwnLoop::Accept(const Eigen::VectorXd& delta) {
+  if (options_.secant_memory > 0) {
+    secant_.Add(delta, next_.gradient - current_.gradient -
+                           next_.hessian.selfadjointView<Eigen::Upper>() * delta);
+  }
+  state_.swap(trial_);
+  std::swap(current_, next_);
+}
+
 OwnMinimizerResult OwnLoop::Run() {
   if (!supported_) {
     return {"failure", "dynslam_lm handles residuals of at most 6 and blocks of at most 7 values",
             false};
   }
-  std::vector<double> state, trial;
   for (const Block& b : blocks_) {
-    state.insert(state.end(), b.problem_values, b.problem_values + b.size);
+    state_.insert(state_.end(), b.problem_values, b.problem_values + b.size);
   }
-  NormalEquations current, next;
   Clock::time_point t = Clock::now();
-  if (!Evaluate(state, &current)) {
+  if (!Evaluate(state_, &current_)) {
     return {"failure", "a residual could not be evaluated at the start", false};
   }
   result_.evaluation_s += SecondsSince(t);
   cholesky_.cholmod().nmethods = 1;  // AMD only, as Ceres asks CHOLMOD
   cholesky_.cholmod().method[0].ordering = CHOLMOD_AMD;
   cholesky_.cholmod().postorder = 1;
-  cholesky_.analyzePattern(current.hessian);
+  cholesky_.analyzePattern(current_.hessian);
   double radius = 1.0 / options_.initial_lambda;
   double decrease_factor = 2;
   const double min_radius = options_.dsc_released_lm ? 1.0 / kReleasedMaxLambda : kMinRadius;
@@ -445,7 +516,7 @@ OwnMinimizerResult OwnLoop::Run() {
   auto stop = [&](std::string termination, std::string detail) {
     result_.termination = std::move(termination);
     result_.detail = std::move(detail);
-    WriteBack(state);
+    WriteBack(state_);
     return result_;
   };
   while (true) {
@@ -455,64 +526,37 @@ OwnMinimizerResult OwnLoop::Run() {
     if (result_.linear_solves >= options_.max_iterations) {
       return stop("no_convergence", "the step limit (max_iterations) was reached");
     }
-    if (current.gradient.lpNorm<Eigen::Infinity>() <= options_.gradient_tolerance) {
+    if (current_.gradient.lpNorm<Eigen::Infinity>() <= options_.gradient_tolerance) {
       return stop("convergence", "gradient max-norm <= gradient_tolerance");
     }
     t = Clock::now();
     const double lambda = 1.0 / radius;
     std::vector<Candidate> candidates;
-    const bool solved = DampedStep(current, lambda, &candidates);
+    const bool solved = DampedStep(&current_, lambda, &candidates);
     ++result_.linear_solves;
     result_.linear_solve_s += SecondsSince(t);
     if (!solved) {
-      AddRow(lambda, current.cost, kInfinity, false, 0, 0);
+      AddRow(lambda, current_.cost, kInfinity, false, 0, 0);
       if (shrink()) return stop("convergence", "the damping reached its bound");
       continue;
     }
     const double tolerance = options_.parameter_tolerance;
-    const double state_norm = Eigen::Map<const Eigen::VectorXd>(state.data(), state.size()).norm();
+    const double state_norm =
+        Eigen::Map<const Eigen::VectorXd>(state_.data(), state_.size()).norm();
     if (candidates.back().delta.norm() <= tolerance * (state_norm + tolerance)) {
       return stop("convergence", "step norm <= parameter_tolerance");
     }
-    // One row per linear solve (SPEC §4): the last candidate tried.
-    const Candidate* taken = nullptr;
     double rho = 0;
-    for (const Candidate& c : candidates) {
-      Plus(state, c.delta, &trial);
-      t = Clock::now();
-      const bool evaluated = Evaluate(trial, &next);
-      result_.evaluation_s += SecondsSince(t);
-      const double trial_cost = evaluated ? next.cost : kInfinity;
-      rho = evaluated ? (current.cost - trial_cost) / c.model_decrease : 0;
-      const bool accepted = evaluated && c.model_decrease > 0 && rho > kMinRelativeDecrease;
-      if (accepted || &c == &candidates.back()) {
-        AddRow(lambda, current.cost, trial_cost, accepted, rho, c.delta.norm());
-      }
-      if (accepted) {
-        ChooseModel(current, c.delta, current.cost - trial_cost);
-        taken = &c;
-        break;
-      }
-      if (c.secant) {  // the estimate misled: start it afresh from the next steps
-        secant_.Clear();
-        use_secant_ = false;
-      }
-    }
+    const Candidate* taken = TryCandidates(candidates, lambda, &rho);
     if (taken == nullptr) {
       if (shrink()) return stop("convergence", "the damping reached its bound");
       continue;
     }
-    const Eigen::VectorXd& delta = taken->delta;
-    const double change = current.cost - next.cost;
-    if (options_.secant_memory > 0) {
-      secant_.Add(delta, next.gradient - current.gradient -
-                             next.hessian.selfadjointView<Eigen::Upper>() * delta);
-    }
-    state.swap(trial);
-    std::swap(current, next);
+    const double change = current_.cost - next_.cost;
+    Accept(taken->delta);
     radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1 - std::pow(2 * rho - 1, 3)));
     decrease_factor = 2;
-    if (change <= options_.function_tolerance * (current.cost + change)) {
+    if (change <= options_.function_tolerance * (current_.cost + change)) {
       return stop("convergence", "relative cost change <= function_tolerance");
     }
   }

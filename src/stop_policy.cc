@@ -62,7 +62,12 @@ std::optional<StopDecision> RemainingChi2(const SolverOptions& options,
                                           const std::vector<StepRecord>& rows) {
   if (options.dsc_released_lm) return std::nullopt;  // its own rule
   const std::optional<double> bound = RemainingChi2Bound(options);
-  const double remaining = StopPolicy::EstimatedRemainingChi2(rows);
+  double remaining = StopPolicy::EstimatedRemainingChi2(rows);
+  // A tail with the secant estimate is not a geometric series (its steps alternate between the
+  // two models): the estimate must hold after the step before too (docs/SOLVER.md).
+  if (options.secant_memory > 0 && !rows.empty()) {
+    remaining = std::max(remaining, StopPolicy::EstimatedRemainingChi2(rows, rows.size() - 1));
+  }
   if (!bound || !(remaining <= *bound)) return std::nullopt;
   char detail[160];
   std::snprintf(detail, sizeof detail,
@@ -109,13 +114,17 @@ StopDecision StopPolicy::StepLimit() const {
 // the step's quality ρ ∈ (1, 2) leaves along the step, d·(ρ − 1)²/((2 − ρ)·ρ) (a model whose
 // curvature is 1/(2 − ρ) times too high: its steps undershoot). +inf otherwise.
 double StopPolicy::EstimatedRemainingChi2(const std::vector<StepRecord>& rows) {
-  if (rows.size() < 2) return kInfinity;
-  const StepRecord& last = rows.back();
-  const StepRecord& before = rows[rows.size() - 2];
+  return EstimatedRemainingChi2(rows, rows.size());
+}
+
+double StopPolicy::EstimatedRemainingChi2(const std::vector<StepRecord>& rows, size_t count) {
+  if (count < 2 || count > rows.size()) return kInfinity;
+  const StepRecord& last = rows[count - 1];
+  const StepRecord& before = rows[count - 2];
   if (!last.accepted || !before.accepted || !(last.relative_decrease > 0)) return kInfinity;
   // An extrapolation or gauge move breaks the series: the step after it also corrects its
   // overshoot, so the ratio is read only from the second and third steps after one.
-  for (size_t i = rows.size() >= 3 ? rows.size() - 3 : 0; i < rows.size(); ++i) {
+  for (size_t i = count >= 3 ? count - 3 : 0; i < count; ++i) {
     if (!IsLinearSolve(rows[i])) return kInfinity;
   }
   const double decrease = last.cost - last.trial_cost;

@@ -51,8 +51,10 @@ class StopPolicy {
   std::optional<StopDecision> AfterProbe(const StopDecision& probe, double gained_chi2) const;
   StopDecision StepLimit() const;
 
-  // The χ² still to gain after the last of `rows`, +inf when the rows cannot tell.
+  // The χ² still to gain after the last of `rows` (or after the first `count` of them), +inf
+  // when the rows cannot tell.
   static double EstimatedRemainingChi2(const std::vector<StepRecord>& rows);
+  static double EstimatedRemainingChi2(const std::vector<StepRecord>& rows, size_t count);
 
  private:
   const SolverOptions& options_;

@@ -165,6 +165,26 @@ TEST(OwnLoopSecant, ReachesTheOptimumInFewerLinearSolves) {
   }
 }
 
+// Evaluation in two threads sums the same terms in another order: the same steps and optimum
+// (to rounding), with the secant estimate too.
+TEST(OwnLoopThreads, TwoThreadsTakeTheStepsOfOne) {
+  const Graph start = ReadReference("synthetic", "oc_b");
+  SolveReport reports[2];
+  for (int threads : {1, 2}) {
+    Graph graph = start;
+    SolverOptions options = TightRule(SolverOptions());
+    options.minimizer = MinimizerType::kDynslamLm;
+    options.secant_memory = 2;
+    options.threads = threads;
+    Expected<SolveReport> report = Solve(options, &graph);
+    ASSERT_TRUE(report.ok() && report->usable);
+    reports[threads - 1] = *report;
+  }
+  EXPECT_EQ(reports[1].steps, reports[0].steps);
+  EXPECT_NEAR(reports[1].initial_cost, reports[0].initial_cost, 1e-12 * reports[0].initial_cost);
+  EXPECT_NEAR(reports[1].final_cost, reports[0].final_cost, 1e-10 * reports[0].final_cost);
+}
+
 // The estimate has no place in Ceres's loops: asking for it there is an error, not a no-op.
 TEST(OwnLoopSecant, WithCeresMinimizersIsAnErrorNamingDynslamLm) {
   Graph graph = ReadReference("synthetic", "oc_b");

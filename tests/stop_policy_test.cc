@@ -52,6 +52,22 @@ TEST(StopPolicyTest, TheRemainingChi2RuleReadsTheGeometricSeries) {
   EXPECT_FALSE(StopPolicy(options, StopPolicy::Clock::now()).WithinRemainingChi2(0));
 }
 
+// With the secant estimate the tail is no geometric series: a sudden fall in the decrease (8,
+// then 0.1: estimate 0.2) stops only once the estimate after the step before is within the bound
+// too (there decreases 4, then 8: no series, +inf).
+TEST(StopPolicyTest, WithTheSecantEstimateTheRuleMustHoldForTheLastTwoSteps) {
+  std::vector<StepRecord> rows = {Accepted(100, 96), Accepted(96, 88), Accepted(88, 87.9)};
+  EXPECT_NEAR(StopPolicy::EstimatedRemainingChi2(rows), 0.2, 1e-12);
+  SolverOptions options;
+  options.remaining_chi2 = 1;
+  EXPECT_TRUE(StopPolicy(options, StopPolicy::Clock::now()).Check(rows, 3));
+  options.secant_memory = 2;
+  const StopPolicy secant(options, StopPolicy::Clock::now());
+  EXPECT_FALSE(secant.Check(rows, 3));
+  rows.push_back(Accepted(87.9, 87.89));
+  EXPECT_TRUE(secant.Check(rows, 4));
+}
+
 TEST(StopPolicyTest, AProbeThatGainsMoreThanTheRuleAllowsGoesOn) {
   SolverOptions options;
   options.remaining_chi2 = 0.01;

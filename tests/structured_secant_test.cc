@@ -1,5 +1,6 @@
-// The structured secant estimate of the curvature Gauss–Newton leaves out (src/structured_secant.h):
-// the secant equations it promises, and its Woodbury step against a dense solve.
+// The structured secant estimate of the curvature Gauss–Newton leaves out
+// (src/structured_secant.h): the secant equations it promises, and its Woodbury step against a
+// dense solve.
 #include "src/structured_secant.h"
 
 #include <Eigen/Dense>
@@ -54,8 +55,8 @@ TEST(StructuredSecant, CorrectedStepSolvesTheSystemWithTheEstimateAdded) {
   const Eigen::VectorXd g = Eigen::VectorXd::Random(n);
   const Eigen::LLT<Eigen::MatrixXd> llt(A);
   Eigen::VectorXd delta = -llt.solve(g);
-  ASSERT_TRUE(secant.Correct([&](const Eigen::MatrixXd& b) { return Eigen::MatrixXd(llt.solve(b)); },
-                             &delta));
+  const auto solve = [&](const Eigen::MatrixXd& b) { return Eigen::MatrixXd(llt.solve(b)); };
+  ASSERT_TRUE(secant.Correct(solve, &delta));
   const Eigen::VectorXd dense = -(A + S).partialPivLu().solve(g);
   EXPECT_LT((delta - dense).norm(), 1e-10 * dense.norm());
 }
