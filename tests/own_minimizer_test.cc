@@ -185,6 +185,19 @@ TEST(OwnLoopThreads, TwoThreadsTakeTheStepsOfOne) {
   EXPECT_NEAR(reports[1].final_cost, reports[0].final_cost, 1e-10 * reports[0].final_cost);
 }
 
+// secant_memory −1 (the default) is two pairs with dynslam_lm and none with Ceres's loops.
+TEST(OwnLoopSecant, AutoIsTwoPairsWithDynslamLmOnly) {
+  const Graph graph = ReadReference("synthetic", "oc_b");
+  SolverOptions options;
+  ASSERT_EQ(options.secant_memory, -1);
+  options.minimizer = MinimizerType::kDynslamLm;
+  EXPECT_EQ(ResolveAuto(options, graph).secant_memory, 2);
+  options.minimizer = MinimizerType::kLevenbergMarquardt;
+  EXPECT_EQ(ResolveAuto(options, graph).secant_memory, 0);
+  options.minimizer = MinimizerType::kAuto;
+  EXPECT_EQ(ResolveAuto(options, graph).secant_memory, 0);
+}
+
 // The estimate has no place in Ceres's loops: asking for it there is an error, not a no-op.
 TEST(OwnLoopSecant, WithCeresMinimizersIsAnErrorNamingDynslamLm) {
   Graph graph = ReadReference("synthetic", "oc_b");

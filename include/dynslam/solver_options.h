@@ -70,7 +70,7 @@ struct SolverOptions {
   double initial_lambda = 0;    // 0: auto
   bool jacobi_scaling = true;
   int nonmonotonic_steps = -1;  // −1: auto
-  int secant_memory = 0;        // 0: Gauss–Newton's model
+  int secant_memory = -1;       // −1: auto
   bool eliminate_object_points = false;
   Frame object_point_variables = Frame::kWorld;
   Frame kinematic_residual_frame = Frame::kWorld;
@@ -146,8 +146,9 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
                 -1, 1000),
         Integer("secant_memory", "solver", &O::secant_memory,
                 "dynslam_lm: add to Gauss-Newton's model the curvature it leaves out, estimated "
-                "from the last N accepted steps (structured secant, docs/SOLVER.md); 0: off",
-                0, 64),
+                "from the last N accepted steps (structured secant, docs/SOLVER.md); 0: off; "
+                "-1: 2 with dynslam_lm, else 0",
+                -1, 64),
         Aliased({"extrapolate"}, Switch("extrapolation", "solver", &O::extrapolation,
                "when two accepted steps in a row gain at least 1.5x what their model predicted, "
                "try moving on along them 2, 4, 8, ... (at most 64) times as far while the cost "
