@@ -94,9 +94,6 @@ py::object ParseJsonText(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
-struct PySolveReport;
-PySolveReport SolveReleasingTheGil(SolverOptions options, Graph graph);
-
 struct PySolveReport {
   SolveReport report;
   Graph graph;  // at the solution

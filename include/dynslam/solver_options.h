@@ -116,8 +116,8 @@ inline const OptionTable<SolverOptions>& SolverOptionTable() {
                "trust-region strategy: Ceres's Levenberg-Marquardt or Powell's dogleg, or "
                "dynslam_lm: dynslam's own LM loop over the same cost functions (CHOLMOD, "
                "secant_memory, no extrapolation or gauge moves yet; docs/SOLVER.md); auto: lm "
-               "for oc_a, oc_b, oc_c "
-               "and pose graphs, dogleg for wc, hy and other graphs with points"),
+               "for oc_a, oc_b, oc_c and pose graphs, dogleg for wc, hy and other graphs with "
+               "points"),
         Choice("linear_solver", "solver", &O::linear_solver,
                {LinearSolverType::kAuto, LinearSolverType::kSparseSchur,
                 LinearSolverType::kSparseNormalCholesky, LinearSolverType::kIterativeSchur,
